@@ -1,0 +1,65 @@
+#include "scene/Scene.h"
+
+namespace rad {
+
+glm::dvec3 Polygon::normal() const {
+    // Newell's method: robust for any planar polygon.
+    glm::dvec3 n(0.0);
+    for (int i = 0; i < vertexCount; ++i) {
+        const glm::dvec3& a = vertices[i];
+        const glm::dvec3& b = vertices[(i + 1) % vertexCount];
+        n += glm::cross(a, b);
+    }
+    const double len = glm::length(n);
+    return len > 0.0 ? n / len : glm::dvec3(0.0);
+}
+
+double Polygon::area() const {
+    glm::dvec3 n(0.0);
+    for (int i = 0; i < vertexCount; ++i) n += glm::cross(vertices[i], vertices[(i + 1) % vertexCount]);
+    return 0.5 * glm::length(n);
+}
+
+glm::dvec3 Polygon::centroid() const {
+    // Fan triangulation from vertex 0, weighted by triangle area.
+    glm::dvec3 c(0.0);
+    double total = 0.0;
+    for (int i = 1; i + 1 < vertexCount; ++i) {
+        const double a = 0.5 * glm::length(glm::cross(vertices[i] - vertices[0], vertices[i + 1] - vertices[0]));
+        c += a * (vertices[0] + vertices[i] + vertices[i + 1]) / 3.0;
+        total += a;
+    }
+    if (total <= 0.0) return vertices[0];
+    return c / total;
+}
+
+Aabb Scene::bounds() const {
+    Aabb box;
+    for (const Polygon& p : polygons)
+        for (int i = 0; i < p.vertexCount; ++i) box.extend(p.vertices[i]);
+    return box;
+}
+
+Aabb Scene::objectBounds(std::uint32_t object) const {
+    Aabb box;
+    const Object& o = objects.at(object);
+    for (std::uint32_t i = o.firstPolygon; i < o.firstPolygon + o.polygonCount; ++i)
+        for (int k = 0; k < polygons[i].vertexCount; ++k) box.extend(polygons[i].vertices[k]);
+    return box;
+}
+
+std::optional<std::uint32_t> Scene::findObject(const std::string& name) const {
+    for (std::uint32_t i = 0; i < objects.size(); ++i)
+        if (objects[i].name == name) return i;
+    return std::nullopt;
+}
+
+bool Scene::hasEmitter() const {
+    for (const Polygon& p : polygons) {
+        const glm::dvec3& e = materials[p.material].emission;
+        if (e.x > 0.0 || e.y > 0.0 || e.z > 0.0) return true;
+    }
+    return false;
+}
+
+}  // namespace rad

@@ -1,0 +1,85 @@
+#pragma once
+// The scene model: what a glTF file becomes once imported. Everything is in
+// world space, metres, Y up, double precision.
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace rad {
+
+// One-line error about a scene, naming the file and the offending item.
+struct SceneError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct Material {
+    std::string name;
+    glm::dvec3 reflectance{0.0};  // rho, each channel in [0,1)
+    glm::dvec3 emission{0.0};     // E, each channel >= 0
+};
+
+// A planar convex polygon: a triangle or a quad. Counter-clockwise seen from
+// the front, which is the only side that emits and reflects.
+struct Polygon {
+    std::array<glm::dvec3, 4> vertices{};
+    std::uint8_t vertexCount = 3;
+    std::uint32_t material = 0;
+    std::uint32_t object = 0;
+
+    glm::dvec3 normal() const;  // unit, from the winding
+    double area() const;
+    glm::dvec3 centroid() const;  // of the area
+};
+
+struct Aabb {
+    glm::dvec3 lo{std::numeric_limits<double>::infinity()};
+    glm::dvec3 hi{-std::numeric_limits<double>::infinity()};
+    void extend(const glm::dvec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    void extend(const Aabb& b) { lo = glm::min(lo, b.lo); hi = glm::max(hi, b.hi); }
+    bool empty() const { return lo.x > hi.x; }
+    glm::dvec3 center() const { return 0.5 * (lo + hi); }
+    glm::dvec3 extent() const { return hi - lo; }
+};
+
+// One object per named glTF node that carries a mesh. Its polygons are the
+// contiguous range [firstPolygon, firstPolygon + polygonCount) of Scene::polygons.
+struct Object {
+    std::string name;
+    glm::dmat4 worldFromLocal{1.0};
+    bool dynamic = false;  // extras.dynamic: a candidate for the dynamic object
+    std::uint32_t firstPolygon = 0;
+    std::uint32_t polygonCount = 0;
+};
+
+// A perspective camera looking down its local -Z axis.
+struct Camera {
+    glm::dvec3 position{0.0};
+    glm::dvec3 forward{0.0, 0.0, -1.0};  // unit
+    glm::dvec3 up{0.0, 1.0, 0.0};        // unit, orthogonal to forward
+    double yfov = 0.7;                   // radians
+    std::optional<double> aspectRatio;   // width / height, when the file gives one
+    double znear = 0.01;
+};
+
+struct Scene {
+    std::string sourcePath;
+    std::vector<Material> materials;
+    std::vector<Object> objects;
+    std::vector<Polygon> polygons;
+    std::optional<Camera> camera;
+
+    Aabb bounds() const;
+    Aabb objectBounds(std::uint32_t object) const;
+    // Index of the object with this name, or nullopt.
+    std::optional<std::uint32_t> findObject(const std::string& name) const;
+    bool hasEmitter() const;
+};
+
+}  // namespace rad
