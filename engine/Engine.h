@@ -1,0 +1,82 @@
+#pragma once
+// The face of the radiosity engine for the programs: build the hierarchy of a
+// scene, solve it, and hand out immutable snapshots and statistics.
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/Scene.h"
+#include "snapshot/MeshSnapshot.h"
+#include "solve/Solver.h"
+
+namespace rad {
+
+struct EngineSettings {
+    double epsilon = 2e-4;  // BF threshold, relative to the total emitted power
+    // Area threshold A_e in square metres; 0 picks 2e-5 of the scene's total
+    // polygon area, so that the default suits any scene scale.
+    double minArea = 0.0;
+    SolveSettings solve;
+    int maxRefineRounds = 16;  // refine / solve rounds before giving up
+    std::size_t maxLinks = 4'000'000;
+    int samplesPerSide = 4;  // visibility rays per link: samplesPerSide^2
+};
+
+struct MemoryStats {
+    std::size_t elements = 0;  // H-elements and their link lists
+    std::size_t links = 0;     // links and p-links
+    std::size_t total() const { return elements + links; }
+};
+
+struct SolveStats {
+    std::size_t polygons = 0;
+    std::size_t elements = 0;
+    std::size_t links = 0;          // active
+    std::size_t passiveLinks = 0;   // p-links
+    int iterations = 0;             // gather/push-pull sweeps, all rounds
+    int refineRounds = 0;
+    bool converged = false;
+    std::string message;            // why it did not converge, or notes
+    double hierarchySeconds = 0.0;
+    double refineSeconds = 0.0;
+    double solveSeconds = 0.0;
+    double minArea = 0.0;
+    MemoryStats memory;
+    EnergyBalance energy;
+};
+
+struct ObjectRadiosity {
+    std::string name;
+    double area = 0.0;
+    glm::dvec3 radiosity{0.0};  // area-weighted mean B over its surfaces
+};
+
+class Engine {
+public:
+    // Throws SceneError for a scene that cannot be solved (nothing emits) and
+    // IndexRangeOverflow when the area threshold is too small to number.
+    Engine(Scene scene, const EngineSettings& settings);
+    ~Engine();
+    Engine(const Engine&) = delete;
+    Engine& operator=(const Engine&) = delete;
+
+    using Progress = std::function<void(const std::string&)>;
+    // Refines and solves to convergence (paper sec. 5: "no more links can be
+    // refined for the given error threshold, and the energy balance has been
+    // computed using all links").
+    const SolveStats& solve(const Progress& progress = {});
+
+    MeshSnapshot snapshot() const;
+    std::vector<ObjectRadiosity> objectRadiosity() const;
+    const Scene& scene() const;
+    const SolveStats& stats() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace rad

@@ -1,0 +1,58 @@
+#pragma once
+// H-elements (paper sec. 3.1): clusters and surface elements in one hierarchy.
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "hierarchy/IndexRange.h"
+#include "links/FormFactor.h"
+#include "scene/Scene.h"
+
+namespace rad {
+
+using ElementId = std::uint32_t;
+using LinkId = std::uint32_t;
+inline constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+enum class ElementKind : std::uint8_t { Cluster, Surface };
+
+struct HElement {
+    ElementKind kind = ElementKind::Cluster;
+    ElementId parent = kNone;
+    std::vector<ElementId> children;  // clusters: any number; surfaces: none or four
+    IndexRange range;
+
+    // Geometry. Surfaces: the patch, a part of input polygon `polygon`, given
+    // by the parametric corners (u,v) of that polygon (barycentric-like for
+    // triangles), which the display uses to find shared vertices.
+    PatchGeometry patch;
+    std::array<glm::dvec2, 4> param{};
+    std::uint32_t polygon = kNone;
+    std::uint32_t object = kNone;  // set for surfaces and for a whole object's cluster
+    std::uint8_t depth = 0;        // quadtree depth below the input polygon
+    glm::dvec3 normal{0.0};        // surfaces
+    glm::dvec3 center{0.0};
+    Aabb box;
+    double area = 0.0;  // surfaces: own area; clusters: total surface area inside
+
+    // Material (surfaces).
+    glm::dvec3 reflectance{0.0};
+    glm::dvec3 emission{0.0};
+
+    // Solution state (double precision: the in-place gather adds differences).
+    glm::dvec3 irradiance{0.0};  // gathered on this element's own active links
+    glm::dvec3 radiosity{0.0};   // B; for clusters the area-weighted mean below
+    bool changed = false;
+
+    // Links arriving here (this element is the receiver).
+    std::vector<LinkId> links;   // active
+    std::vector<LinkId> plinks;  // passive: refined, kept as line-space parents
+
+    bool isLeaf() const { return children.empty(); }
+    bool isSurface() const { return kind == ElementKind::Surface; }
+};
+
+}  // namespace rad

@@ -1,0 +1,258 @@
+#include "hierarchy/Hierarchy.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace rad {
+namespace {
+
+// A cluster holds at most this many children before it is split in two.
+constexpr std::size_t kClusterFanout = 4;
+
+glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv) {
+    if (p.vertexCount == 3) return p.vertices[0] + uv.x * (p.vertices[1] - p.vertices[0]) + uv.y * (p.vertices[2] - p.vertices[0]);
+    // Bilinear over the quad; a planar convex quad maps sub-squares to planar convex quads.
+    const glm::dvec3 a = glm::mix(p.vertices[0], p.vertices[1], uv.x);
+    const glm::dvec3 b = glm::mix(p.vertices[3], p.vertices[2], uv.x);
+    return glm::mix(a, b, uv.y);
+}
+
+template <class CenterOf>
+void splitMedian(std::vector<std::uint32_t>& items, CenterOf centerOf, std::vector<std::uint32_t>& left,
+                 std::vector<std::uint32_t>& right) {
+    Aabb box;
+    for (std::uint32_t i : items) box.extend(centerOf(i));
+    const glm::dvec3 e = box.extent();
+    const int axis = (e.x >= e.y && e.x >= e.z) ? 0 : (e.y >= e.z ? 1 : 2);
+    const auto mid = items.begin() + static_cast<std::ptrdiff_t>(items.size() / 2);
+    std::nth_element(items.begin(), mid, items.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return centerOf(a)[axis] < centerOf(b)[axis]; });
+    left.assign(items.begin(), mid);
+    right.assign(mid, items.end());
+}
+
+}  // namespace
+
+Hierarchy::Hierarchy(const Scene& scene, double minArea)
+    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), objectClusters_(scene.objects.size(), kNone), minArea_(minArea) {
+    std::vector<std::uint32_t> dynamicObjects, staticObjects;
+    for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
+        if (scene.objects[o].polygonCount == 0) continue;
+        (scene.objects[o].dynamic ? dynamicObjects : staticObjects).push_back(o);
+    }
+    root_ = add(HElement{});
+    std::vector<ElementId> top;
+    // Each object that may become dynamic sits in its own cluster right under the root.
+    for (std::uint32_t o : dynamicObjects) top.push_back(buildObjectCluster(scene, o));
+    if (!staticObjects.empty()) {
+        const ElementId s = buildCluster(scene, staticObjects);
+        // Avoid a chain of single-child clusters.
+        if (dynamicObjects.empty()) {
+            top = elements_[s].children;
+            for (ElementId c : top) elements_[c].parent = root_;
+            elements_[s] = HElement{};
+            free_.push_back(s);
+        } else {
+            top.push_back(s);
+        }
+    }
+    elements_[root_].children = top;
+    for (ElementId c : top) elements_[c].parent = root_;
+    finishCluster(root_);
+    assignRanges(root_, 0);
+}
+
+ElementId Hierarchy::add(HElement e) {
+    if (!free_.empty()) {
+        const ElementId id = free_.back();
+        free_.pop_back();
+        elements_[id] = std::move(e);
+        return id;
+    }
+    elements_.push_back(std::move(e));
+    return static_cast<ElementId>(elements_.size() - 1);
+}
+
+ElementId Hierarchy::buildCluster(const Scene& scene, std::vector<std::uint32_t> objects) {
+    HElement cluster;
+    cluster.kind = ElementKind::Cluster;
+    const ElementId id = add(cluster);
+    std::vector<ElementId> children;
+    if (objects.size() <= kClusterFanout) {
+        for (std::uint32_t o : objects) children.push_back(buildObjectCluster(scene, o));
+    } else {
+        std::vector<Aabb> boxes(scene.objects.size());
+        for (std::uint32_t o : objects) boxes[o] = scene.objectBounds(o);
+        std::vector<std::uint32_t> left, right;
+        splitMedian(objects, [&](std::uint32_t o) { return boxes[o].center(); }, left, right);
+        children.push_back(buildCluster(scene, std::move(left)));
+        children.push_back(buildCluster(scene, std::move(right)));
+    }
+    for (ElementId c : children) elements_[c].parent = id;
+    elements_[id].children = std::move(children);
+    finishCluster(id);
+    return id;
+}
+
+ElementId Hierarchy::buildObjectCluster(const Scene& scene, std::uint32_t object) {
+    const Object& o = scene.objects[object];
+    std::vector<std::uint32_t> polygons(o.polygonCount);
+    std::iota(polygons.begin(), polygons.end(), o.firstPolygon);
+    const ElementId id = buildPolygonCluster(scene, std::move(polygons), object);
+    objectClusters_[object] = id;
+    return id;
+}
+
+ElementId Hierarchy::buildPolygonCluster(const Scene& scene, std::vector<std::uint32_t> polygons, std::uint32_t object) {
+    HElement cluster;
+    cluster.kind = ElementKind::Cluster;
+    cluster.object = object;
+    const ElementId id = add(cluster);
+    std::vector<ElementId> children;
+    if (polygons.size() <= kClusterFanout) {
+        for (std::uint32_t p : polygons) children.push_back(makeSurface(scene, p));
+    } else {
+        std::vector<std::uint32_t> left, right;
+        splitMedian(polygons, [&](std::uint32_t p) { return scene.polygons[p].centroid(); }, left, right);
+        children.push_back(buildPolygonCluster(scene, std::move(left), object));
+        children.push_back(buildPolygonCluster(scene, std::move(right), object));
+    }
+    for (ElementId c : children) elements_[c].parent = id;
+    elements_[id].children = std::move(children);
+    finishCluster(id);
+    return id;
+}
+
+ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
+    const Polygon& p = scene.polygons[polygon];
+    HElement e;
+    e.kind = ElementKind::Surface;
+    e.polygon = polygon;
+    e.object = p.object;
+    e.patch.n = p.vertexCount;
+    for (int i = 0; i < p.vertexCount; ++i) e.patch.v[i] = p.vertices[i];
+    e.param = p.vertexCount == 3 ? std::array<glm::dvec2, 4>{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(0)}
+                                 : std::array<glm::dvec2, 4>{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)};
+    e.normal = p.normal();
+    e.area = p.area();
+    e.center = p.centroid();
+    for (int i = 0; i < p.vertexCount; ++i) e.box.extend(p.vertices[i]);
+    const Material& m = scene.materials[p.material];
+    e.reflectance = m.reflectance;
+    e.emission = m.emission;
+    const ElementId id = add(std::move(e));
+    polygonElements_[polygon] = id;
+    return id;
+}
+
+void Hierarchy::finishCluster(ElementId id) {
+    HElement& c = elements_[id];
+    c.box = Aabb{};
+    c.area = 0.0;
+    glm::dvec3 weighted(0.0);
+    for (ElementId k : c.children) {
+        const HElement& child = elements_[k];
+        c.box.extend(child.box);
+        c.area += child.area;
+        weighted += child.area * child.center;
+    }
+    c.center = c.area > 0.0 ? weighted / c.area : c.box.center();
+}
+
+std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first) {
+    HElement& e = elements_[id];
+    if (e.isSurface()) {
+        const std::string what = "polygon " + std::to_string(e.polygon);
+        const std::uint64_t count = quadtreeIndexCount(e.area, minArea_, what);
+        e.range = {first, checkedAdd(first, count - 1, what)};
+        return e.range.last;
+    }
+    std::uint64_t last = first;
+    for (ElementId c : std::vector<ElementId>(e.children))
+        last = assignRanges(c, checkedAdd(last, 1, "cluster"));
+    elements_[id].range = {first, last};
+    return last;
+}
+
+bool Hierarchy::canSubdivide(ElementId id) const {
+    const HElement& e = elements_[id];
+    return e.isSurface() && e.range.size() > 1;
+}
+
+void Hierarchy::subdivide(ElementId id) {
+    if (!elements_[id].isLeaf() || !canSubdivide(id)) return;
+    const HElement parent = elements_[id];  // copy: add() may reallocate
+    // Parametric corners of the four children. Quads: the four sub-squares.
+    // Triangles: three corner triangles and the middle one (same winding).
+    std::array<std::array<glm::dvec2, 4>, 4> params;
+    const auto& q = parent.param;
+    if (parent.patch.n == 4) {
+        const glm::dvec2 m01 = 0.5 * (q[0] + q[1]), m12 = 0.5 * (q[1] + q[2]), m23 = 0.5 * (q[2] + q[3]),
+                         m30 = 0.5 * (q[3] + q[0]), mc = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+        params = {{{q[0], m01, mc, m30}, {m01, q[1], m12, mc}, {mc, m12, q[2], m23}, {m30, mc, m23, q[3]}}};
+    } else {
+        const glm::dvec2 m01 = 0.5 * (q[0] + q[1]), m12 = 0.5 * (q[1] + q[2]), m20 = 0.5 * (q[2] + q[0]);
+        params = {{{q[0], m01, m20, {}}, {m01, q[1], m12, {}}, {m20, m12, q[2], {}}, {m01, m12, m20, {}}}};
+    }
+    std::vector<ElementId> kids;
+    for (int k = 0; k < 4; ++k) {
+        HElement c;
+        c.kind = ElementKind::Surface;
+        c.parent = id;
+        c.polygon = parent.polygon;
+        c.object = parent.object;
+        c.depth = static_cast<std::uint8_t>(parent.depth + 1);
+        c.range = quadtreeChildRange(parent.range, k);
+        c.param = params[k];
+        c.patch.n = parent.patch.n;
+        c.normal = parent.normal;
+        c.reflectance = parent.reflectance;
+        c.emission = parent.emission;
+        c.radiosity = parent.radiosity;
+        kids.push_back(add(std::move(c)));
+    }
+    elements_[id].children = kids;
+    updateGeometry(id);
+}
+
+void Hierarchy::removeChildren(ElementId id) {
+    std::vector<ElementId> stack = std::move(elements_[id].children);
+    elements_[id].children.clear();
+    while (!stack.empty()) {
+        const ElementId e = stack.back();
+        stack.pop_back();
+        for (ElementId c : elements_[e].children) stack.push_back(c);
+        elements_[e] = HElement{};
+        free_.push_back(e);
+    }
+}
+
+void Hierarchy::updateGeometry(ElementId id) {
+    HElement& e = elements_[id];
+    if (e.isSurface()) {
+        const Polygon& p = scene_.polygons[e.polygon];
+        for (int i = 0; i < e.patch.n; ++i) e.patch.v[i] = polygonPoint(p, e.param[i]);
+        e.normal = p.normal();
+        e.area = polygonArea(e.patch);
+        e.box = Aabb{};
+        glm::dvec3 sum(0.0);
+        for (int i = 0; i < e.patch.n; ++i) {
+            e.box.extend(e.patch.v[i]);
+            sum += e.patch.v[i];
+        }
+        // Triangles and parallelogram-like quads: the vertex mean is the centroid
+        // (close enough for the bilinear children of a convex quad).
+        e.center = sum / static_cast<double>(e.patch.n);
+    }
+    for (ElementId c : e.children) updateGeometry(c);
+    if (!elements_[id].isSurface()) finishCluster(id);
+}
+
+std::size_t Hierarchy::memoryBytes() const {
+    std::size_t bytes = elements_.capacity() * sizeof(HElement) + free_.capacity() * sizeof(ElementId);
+    for (const HElement& e : elements_)
+        bytes += (e.children.capacity() + e.links.capacity() + e.plinks.capacity()) * sizeof(std::uint32_t);
+    return bytes;
+}
+
+}  // namespace rad

@@ -1,0 +1,64 @@
+#pragma once
+// The H-element hierarchy of a scene: a root cluster; below it one cluster per
+// object that may become dynamic, and a tree of clusters over the others; each
+// object's polygons under its own cluster; polygons subdivided into quadtrees
+// on demand during refinement.
+
+#include <vector>
+
+#include "hierarchy/HElement.h"
+#include "scene/Scene.h"
+
+namespace rad {
+
+class Hierarchy {
+public:
+    // `scene` must outlive the hierarchy. minArea: the area threshold A_e. Throws IndexRangeOverflow when the
+    // numbering would not fit 64 bits.
+    Hierarchy(const Scene& scene, double minArea);
+
+    ElementId root() const { return root_; }
+    HElement& operator[](ElementId id) { return elements_[id]; }
+    const HElement& operator[](ElementId id) const { return elements_[id]; }
+    std::size_t size() const { return elements_.size(); }
+    std::size_t liveCount() const { return elements_.size() - free_.size(); }
+    double minArea() const { return minArea_; }
+
+    // The surface element of each input polygon (quadtree root).
+    ElementId polygonElement(std::uint32_t polygon) const { return polygonElements_[polygon]; }
+    // The cluster holding all of one object's polygons.
+    ElementId objectCluster(std::uint32_t object) const { return objectClusters_[object]; }
+
+    // Surfaces: whether children may be made (each keeps at least minArea).
+    bool canSubdivide(ElementId id) const;
+    // Makes the four children of a surface leaf (no-op if they exist).
+    void subdivide(ElementId id);
+    // Removes the children (and their subtrees) of a surface element.
+    void removeChildren(ElementId id);
+
+    // Recomputes the geometry of a subtree from the scene's polygons (after
+    // subdivision, or after the object moved), then the enclosing boxes.
+    void updateGeometry(ElementId id);
+
+    // Bytes held by elements and their link lists.
+    std::size_t memoryBytes() const;
+
+private:
+    ElementId add(HElement e);
+    ElementId buildCluster(const Scene& scene, std::vector<std::uint32_t> objects);
+    ElementId buildObjectCluster(const Scene& scene, std::uint32_t object);
+    ElementId buildPolygonCluster(const Scene& scene, std::vector<std::uint32_t> polygons, std::uint32_t object);
+    ElementId makeSurface(const Scene& scene, std::uint32_t polygon);
+    std::uint64_t assignRanges(ElementId id, std::uint64_t first);
+    void finishCluster(ElementId id);
+
+    const Scene& scene_;  // outlives the hierarchy; polygons move with the dynamic object
+    std::vector<HElement> elements_;
+    std::vector<ElementId> free_;
+    std::vector<ElementId> polygonElements_;
+    std::vector<ElementId> objectClusters_;
+    ElementId root_ = kNone;
+    double minArea_;
+};
+
+}  // namespace rad

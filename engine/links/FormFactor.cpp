@@ -1,0 +1,191 @@
+#include "links/FormFactor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace rad {
+
+namespace {
+
+// Newell's vector area: twice the area times the unit normal; exact for planar polygons and
+// well defined (zero) for degenerate ones.
+glm::dvec3 vectorArea2(const PatchGeometry& polygon) {
+    glm::dvec3 n(0.0);
+    const int count = std::clamp(polygon.n, 0, 4);
+    for (int i = 0; i < count; ++i) n += glm::cross(polygon.v[i], polygon.v[(i + 1) % count]);
+    return n;
+}
+
+// Gauss-Legendre nodes and weights on [0, 1] (weights sum to 1), by Newton's iteration on the
+// Legendre polynomial P_n from the Chebyshev-like initial guess cos(pi (i - 1/4) / (n + 1/2)).
+void gaussLegendre01(int n, std::vector<double>& nodes, std::vector<double>& weights) {
+    nodes.assign(n, 0.0);
+    weights.assign(n, 0.0);
+    for (int i = 0; i < (n + 1) / 2; ++i) {
+        double z = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
+        double dp = 1.0;
+        for (int iter = 0; iter < 100; ++iter) {
+            // Three-term recurrence k P_k = (2k - 1) z P_{k-1} - (k - 1) P_{k-2}, up to P_n.
+            double pk = z, pkm1 = 1.0;
+            for (int k = 2; k <= n; ++k) {
+                const double pk1 = ((2.0 * k - 1.0) * z * pk - (k - 1.0) * pkm1) / k;
+                pkm1 = pk;
+                pk = pk1;
+            }
+            dp = n * (z * pk - pkm1) / (z * z - 1.0);  // P_n'(z)
+            const double dz = pk / dp;
+            z -= dz;
+            if (std::abs(dz) < 1e-16) break;
+        }
+        const double w = 2.0 / ((1.0 - z * z) * dp * dp);  // weight on [-1, 1]
+        // Map [-1, 1] to [0, 1]: x = (1 - z) / 2 keeps nodes ascending; weights halve.
+        nodes[i] = 0.5 * (1.0 - z);
+        nodes[n - 1 - i] = 0.5 * (1.0 + z);
+        weights[i] = weights[n - 1 - i] = 0.5 * w;
+    }
+}
+
+}  // namespace
+
+double polygonArea(const PatchGeometry& polygon) { return 0.5 * glm::length(vectorArea2(polygon)); }
+
+glm::dvec3 polygonNormal(const PatchGeometry& polygon) {
+    const glm::dvec3 n = vectorArea2(polygon);
+    const double len = glm::length(n);
+    return len > 0.0 && std::isfinite(len) ? n / len : glm::dvec3(0.0);
+}
+
+double pointToPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& nx,
+                                const PatchGeometry& polygon) {
+    if (polygon.n < 3 || polygon.n > 4) return 0.0;
+    const glm::dvec3 np = polygonNormal(polygon);
+    if (np == glm::dvec3(0.0)) return 0.0;
+
+    // One-sided emitter: x must be strictly in front of the polygon's plane. The tolerance is
+    // relative to the polygon's size and distance so that it means the same at every scale.
+    double scale = 0.0;
+    for (int i = 0; i < polygon.n; ++i) scale = std::max(scale, glm::length(polygon.v[i] - x));
+    const double height = glm::dot(np, x - polygon.v[0]);
+    if (!(height > 1e-12 * scale)) return 0.0;  // also rejects NaN input
+
+    // Sutherland-Hodgman clip to the half-space above x's tangent plane (nx . (p - x) >= 0):
+    // the Lambert contour integral below assumes the whole polygon is visible from x's front.
+    // A convex polygon of 4 vertices clipped by one plane has at most 5.
+    std::array<glm::dvec3, 8> r{};  // clipped vertices relative to x
+    int count = 0;
+    for (int i = 0; i < polygon.n; ++i) {
+        const glm::dvec3 a = polygon.v[i] - x;
+        const glm::dvec3 b = polygon.v[(i + 1) % polygon.n] - x;
+        const double sa = glm::dot(nx, a);
+        const double sb = glm::dot(nx, b);
+        if (sa >= 0.0) r[count++] = a;
+        if ((sa > 0.0 && sb < 0.0) || (sa < 0.0 && sb > 0.0))
+            r[count++] = a + (b - a) * (sa / (sa - sb));
+    }
+    if (count < 3) return 0.0;
+
+    // Lambert's formula (Hottel & Sarofim; Cohen & Wallace 1993, eq. 4.22):
+    //   F(dA_x -> A) = 1/(2 pi) * sum_i beta_i * (nx . gamma_i),
+    // beta_i the angle subtended at x by edge i, gamma_i the unit normal of the triangle
+    // (x, v_i, v_i+1). With counter-clockwise-front winding seen from x, gamma_i is taken as
+    // unit(r_{i+1} x r_i). beta_i = atan2(|c|, r_i . r_{i+1}) stays accurate for tiny and
+    // near-straight angles, unlike acos of a normalised dot product.
+    double sum = 0.0;
+    for (int i = 0; i < count; ++i) {
+        const glm::dvec3& ri = r[i];
+        const glm::dvec3& rj = r[(i + 1) % count];
+        const glm::dvec3 c = glm::cross(rj, ri);
+        const double cl = glm::length(c);
+        // Coincident vertices or an edge through x (only possible within the plane tolerance):
+        // the edge subtends no solid angle we can orient; skip it instead of dividing by zero.
+        if (!(cl > 1e-15 * glm::length(ri) * glm::length(rj))) continue;
+        const double beta = std::atan2(cl, glm::dot(ri, rj));
+        sum += beta * glm::dot(nx, c) / cl;
+    }
+    const double f = sum / (2.0 * std::numbers::pi);
+    return std::isfinite(f) ? std::clamp(f, 0.0, 1.0) : 0.0;
+}
+
+std::vector<SamplePoint> patchSamples(const PatchGeometry& patch, int order) {
+    order = std::clamp(order, 1, 64);
+    std::vector<SamplePoint> samples;
+    if (patch.n < 3 || patch.n > 4) {
+        // Not a polygon: one point at the mean of the given vertices.
+        const int count = std::clamp(patch.n, 1, 4);
+        glm::dvec3 c(0.0);
+        for (int i = 0; i < count; ++i) c += patch.v[i];
+        samples.push_back({c / double(count), 1.0});
+        return samples;
+    }
+    std::vector<double> t, w;
+    gaussLegendre01(order, t, w);
+    samples.reserve(static_cast<std::size_t>(order) * order);
+    double total = 0.0;
+    const auto& v = patch.v;
+    if (patch.n == 4) {
+        // Bilinear map p(u,v) of the unit square onto the quad; the weight is the GL product
+        // weight times the Jacobian |p_u x p_v| (linear in u, v for a planar quad, so the sum
+        // is exactly the area before normalisation).
+        for (int i = 0; i < order; ++i) {
+            for (int j = 0; j < order; ++j) {
+                const double u = t[i], s = t[j];
+                const glm::dvec3 p = (1 - u) * (1 - s) * v[0] + u * (1 - s) * v[1] + u * s * v[2] +
+                                     (1 - u) * s * v[3];
+                const glm::dvec3 pu = (1 - s) * (v[1] - v[0]) + s * (v[2] - v[3]);
+                const glm::dvec3 ps = (1 - u) * (v[3] - v[0]) + u * (v[2] - v[1]);
+                const double wk = w[i] * w[j] * glm::length(glm::cross(pu, ps));
+                samples.push_back({p, wk});
+                total += wk;
+            }
+        }
+    } else {
+        // Collapsed square (Duffy): p(s,t) = v0 + s (v1 - v0) + s t (v2 - v1), Jacobian 2 A s.
+        for (int i = 0; i < order; ++i) {
+            for (int j = 0; j < order; ++j) {
+                const double s = t[i], q = t[j];
+                const glm::dvec3 p = v[0] + s * (v[1] - v[0]) + s * q * (v[2] - v[1]);
+                const double wk = w[i] * w[j] * 2.0 * s;
+                samples.push_back({p, wk});
+                total += wk;
+            }
+        }
+    }
+    if (total > 0.0 && std::isfinite(total)) {
+        for (SamplePoint& sp : samples) sp.w /= total;
+    } else {
+        for (SamplePoint& sp : samples) sp.w = 1.0 / double(samples.size());
+    }
+    return samples;
+}
+
+FormFactorEstimate estimateFormFactor(const PatchGeometry& receiver, const PatchGeometry& source,
+                                      int order) {
+    FormFactorEstimate e;
+    const glm::dvec3 nr = polygonNormal(receiver);
+    if (nr == glm::dvec3(0.0)) return e;
+    e.min = INFINITY;
+    for (const SamplePoint& s : patchSamples(receiver, order)) {
+        const double f = pointToPolygonFormFactor(s.p, nr, source);
+        e.mean += s.w * f;
+        e.min = std::min(e.min, f);
+        e.max = std::max(e.max, f);
+    }
+    return e;
+}
+
+double polygonToPolygonFormFactor(const PatchGeometry& receiver, const PatchGeometry& source,
+                                  int order) {
+    return estimateFormFactor(receiver, source, order).mean;
+}
+
+double pointApproxFormFactor(double aSource, double gSource, double gReceiver,
+                             double distanceSquared) {
+    const double numerator = aSource * gSource * gReceiver;
+    if (!(numerator > 0.0)) return 0.0;
+    if (!(distanceSquared > 0.0)) return 1.0;
+    const double f = numerator / (std::numbers::pi * distanceSquared);
+    return std::isfinite(f) ? std::min(f, 1.0) : 1.0;
+}
+
+}  // namespace rad

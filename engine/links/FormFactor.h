@@ -1,0 +1,68 @@
+#pragma once
+// Form factors between differential areas, polygons and clusters, in double precision.
+//
+// Conventions: polygons are one-sided; counter-clockwise seen from the front is the front, the
+// side that emits and receives. F(receiver -> source) is the fraction of the energy leaving the
+// receiver (diffusely) that arrives at the source, which is the factor used in the gather
+// B_r = E_r + rho_r * sum_s F(r -> s) B_s.
+
+#include <array>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace rad {
+
+// A planar convex polygon (3 or 4 vertices, counter-clockwise = front).
+struct PatchGeometry {
+    std::array<glm::dvec3, 4> v{};
+    int n = 3;
+};
+
+// Area of the polygon (Newell's vector area; 0 for degenerate input).
+double polygonArea(const PatchGeometry& polygon);
+
+// Unit front normal from the winding (Newell's method), or zero for a degenerate polygon.
+glm::dvec3 polygonNormal(const PatchGeometry& polygon);
+
+// Form factor from a differential area at x (unit normal nx) to the FRONT side of `polygon`:
+// the analytic contour integral (Lambert / Hottel), after clipping the polygon to the half-space
+// above x's tangent plane. Zero when x lies behind or in the polygon's plane (one-sided emitter).
+double pointToPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& nx,
+                                const PatchGeometry& polygon);
+
+// Area-averaged form factor F(receiver -> source) = (1/A_r) ∫_r F(dA_x -> source) dA_x,
+// by a deterministic quadrature over the receiver with about order*order points
+// (Gauss-Legendre on the quad's bilinear parametrisation; for a triangle the collapsed-square
+// (Duffy) rule). Only the receiver is sampled: the inner integral is exact.
+double polygonToPolygonFormFactor(const PatchGeometry& receiver, const PatchGeometry& source,
+                                  int order = 4);
+
+// The same, with the smallest and largest point form factor met at the
+// quadrature points: how much the transfer varies across the receiver.
+struct FormFactorEstimate {
+    double mean = 0.0;
+    double min = 0.0;
+    double max = 0.0;
+};
+FormFactorEstimate estimateFormFactor(const PatchGeometry& receiver, const PatchGeometry& source,
+                                      int order = 4);
+
+// Quadrature points (and weights summing to 1) over a patch, used also for visibility rays.
+// order is clamped to [1, 64]; a quad gives order*order points, a triangle order*order points of
+// the collapsed square. A degenerate (zero-area) patch gives equal weights.
+struct SamplePoint {
+    glm::dvec3 p;
+    double w;
+};
+std::vector<SamplePoint> patchSamples(const PatchGeometry& patch, int order);
+
+// Point approximation used for clusters (Sillion 1995, isotropic clusters): the form factor from
+// a receiver to a source seen as a small element of area aSource, with orientation factors:
+// F = aSource * gSource * gReceiver / (pi * d^2), where g = max(cos,0) for a surface and 1/4 for
+// a cluster (mean projected area of an isotropic set of one-sided surfaces).
+// The result is clamped to [0, 1] (a form factor cannot exceed one; the point approximation does
+// when d is small compared with the source); d^2 <= 0 gives 1 if the numerator is positive.
+double pointApproxFormFactor(double aSource, double gSource, double gReceiver,
+                             double distanceSquared);
+
+}  // namespace rad

@@ -1,0 +1,66 @@
+#pragma once
+// Links (Hanrahan et al. 1991) carrying radiosity from a source H-element to a
+// receiver H-element, and p-links: refined links kept on their receiver as the
+// parents of the line-space hierarchy (paper sec. 3.1).
+
+#include <cstdint>
+#include <vector>
+
+#include "hierarchy/HElement.h"
+
+namespace rad {
+
+struct Link {
+    ElementId source = kNone;
+    ElementId receiver = kNone;
+    // F(receiver -> source) without occlusion, and the two parts of the
+    // visibility (sec. 3.4): by the static scene, computed once per link, and
+    // by the dynamic object, recomputed when it moves.
+    double unoccluded = 0.0;
+    // How much the unoccluded point form factor varies across the receiver
+    // (max - min at the quadrature points): where it is large, pushing the
+    // mean down the receiver's subtree is a poor approximation.
+    float spread = 0.0f;
+    float visStatic = 1.0f;
+    float visDynamic = 1.0f;
+    // The form factor the receiver's irradiance currently holds for this link;
+    // the in-place gather (eq. 1, 2) adds B_s times its change.
+    double gathered = 0.0;
+    bool passive = false;
+    bool live = false;
+
+    double formFactor() const { return unoccluded * double(visStatic) * double(visDynamic); }
+    double visibility() const { return double(visStatic) * double(visDynamic); }
+};
+
+// All links and p-links, addressed by LinkId; freed slots are reused.
+class LinkStore {
+public:
+    LinkId add(const Link& link) {
+        if (!free_.empty()) {
+            const LinkId id = free_.back();
+            free_.pop_back();
+            links_[id] = link;
+            links_[id].live = true;
+            return id;
+        }
+        links_.push_back(link);
+        links_.back().live = true;
+        return static_cast<LinkId>(links_.size() - 1);
+    }
+    void remove(LinkId id) {
+        links_[id] = Link{};
+        free_.push_back(id);
+    }
+    Link& operator[](LinkId id) { return links_[id]; }
+    const Link& operator[](LinkId id) const { return links_[id]; }
+    std::size_t slots() const { return links_.size(); }
+    std::size_t liveCount() const { return links_.size() - free_.size(); }
+    std::size_t memoryBytes() const { return links_.capacity() * sizeof(Link) + free_.capacity() * sizeof(LinkId); }
+
+private:
+    std::vector<Link> links_;
+    std::vector<LinkId> free_;
+};
+
+}  // namespace rad

@@ -1,0 +1,233 @@
+#include "refine/Refiner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "geometry/RayCaster.h"
+#include "links/FormFactor.h"
+
+namespace rad {
+namespace {
+
+double radius(const HElement& e) { return 0.5 * glm::length(e.box.extent()); }
+
+// Moves a ray end a little off its surface so that it does not start inside
+// a neighbouring polygon that meets this one at an edge.
+glm::dvec3 lift(const glm::dvec3& p, const glm::dvec3& normal, double size) { return p + 1e-4 * size * normal; }
+
+}  // namespace
+
+Refiner::Refiner(Hierarchy& hierarchy, LinkStore& links, const RayCaster& rays, RefineSettings settings)
+    : h_(hierarchy), links_(links), rays_(rays), settings_(settings) {
+    clusterSamples_.resize(h_.size());
+    refreshClusterSamples(h_.root());
+}
+
+void Refiner::refreshClusterSamples(ElementId subtree) {
+    const HElement& c = h_[subtree];
+    if (c.isSurface()) return;
+    for (ElementId k : c.children) refreshClusterSamples(k);
+    // The input polygons below this cluster, with their cumulative area.
+    std::vector<ElementId> surfaces;
+    std::vector<ElementId> stack{subtree};
+    while (!stack.empty()) {
+        const ElementId e = stack.back();
+        stack.pop_back();
+        if (h_[e].isSurface()) surfaces.push_back(e);
+        else for (ElementId k : h_[e].children) stack.push_back(k);
+    }
+    if (surfaces.empty()) return;
+    std::sort(surfaces.begin(), surfaces.end());
+    std::vector<double> cumulative;
+    double total = 0.0;
+    for (ElementId s : surfaces) cumulative.push_back(total += h_[s].area);
+    std::array<glm::dvec3, 4>& out = clusterSamples_[subtree];
+    for (int k = 0; k < 4; ++k) {
+        const double target = (k + 0.5) / 4.0 * total;
+        const auto it = std::lower_bound(cumulative.begin(), cumulative.end(), target);
+        const HElement& s = h_[surfaces[std::min<std::size_t>(it - cumulative.begin(), surfaces.size() - 1)]];
+        out[k] = lift(s.center, s.normal, std::sqrt(s.area));
+    }
+}
+
+bool Refiner::touchesDynamic(ElementId e) const {
+    if (!dynamicRange_) return false;
+    const IndexRange& r = h_[e].range;
+    return dynamicRange_->contains(r) || r.contains(*dynamicRange_);
+}
+
+std::vector<glm::dvec3> Refiner::samplePoints(ElementId id) const {
+    const HElement& e = h_[id];
+    if (!e.isSurface()) return {clusterSamples_[id].begin(), clusterSamples_[id].end()};
+    std::vector<glm::dvec3> points;
+    const int order = std::max(1, static_cast<int>(std::lround(std::sqrt(settings_.samplesPerSide))));
+    for (const SamplePoint& s : patchSamples(e.patch, order)) points.push_back(lift(s.p, e.normal, std::sqrt(e.area)));
+    return points;
+}
+
+bool Refiner::admissible(ElementId s, ElementId r) const {
+    const HElement& a = h_[s];
+    const HElement& b = h_[r];
+    if (a.isSurface() && b.isSurface()) return true;
+    if (s == r) return false;
+    const double reach = radius(a) + radius(b);
+    const glm::dvec3 d = b.center - a.center;
+    return glm::dot(d, d) > reach * reach;
+}
+
+FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const {
+    const HElement& src = h_[s];
+    const HElement& rcv = h_[r];
+    if (src.isSurface() && rcv.isSurface()) {
+        if (src.polygon == rcv.polygon) return {};  // one plane
+        // Close pairs need more quadrature points: the integrand varies fast.
+        const double reach = radius(src) + radius(rcv);
+        const glm::dvec3 d = rcv.center - src.center;
+        const int order = glm::dot(d, d) < 4.0 * reach * reach ? 5 : 3;
+        // Integrate over the smaller patch (the inner integral over the other
+        // is exact) and use reciprocity, A_r F_rs = A_s F_sr: sampling the
+        // larger patch would miss the peak of a small neighbour's kernel.
+        FormFactorEstimate e = estimateFormFactor(rcv.patch, src.patch, rcv.area > src.area ? 2 : order);
+        if (rcv.area > src.area) e.mean = src.area / rcv.area * estimateFormFactor(src.patch, rcv.patch, order).mean;
+        return e;
+    }
+    const glm::dvec3 d = rcv.center - src.center;
+    const double d2 = glm::dot(d, d);
+    if (!(d2 > 0.0)) return {};
+    const glm::dvec3 dir = d / std::sqrt(d2);
+    const double gs = src.isSurface() ? std::max(0.0, glm::dot(src.normal, dir)) : 0.25;
+    const double gr = rcv.isSurface() ? std::max(0.0, -glm::dot(rcv.normal, dir)) : 0.25;
+    const double f = pointApproxFormFactor(src.area, gs, gr, d2);
+    return {f, f, f};
+}
+
+Link Refiner::compute(ElementId s, ElementId r) const {
+    Link l;
+    l.source = s;
+    l.receiver = r;
+    const FormFactorEstimate f = unoccludedFormFactor(s, r);
+    l.unoccluded = f.mean;
+    l.spread = static_cast<float>(f.max - f.min);
+    const bool dynamic = touchesDynamic(s) || touchesDynamic(r);
+    // A cluster pair that is not admissible still needs its link: it is refined next.
+    const bool mustRefine = !admissible(s, r);
+    if (l.unoccluded <= 0.0 && !dynamic && !mustRefine) return l;  // not live: never carries light
+    l.live = true;
+    if (l.unoccluded > 0.0) {
+        const std::vector<glm::dvec3> ps = samplePoints(s), pr = samplePoints(r);
+        std::vector<glm::dvec3> from, to;
+        for (const glm::dvec3& a : ps)
+            for (const glm::dvec3& b : pr) {
+                from.push_back(a);
+                to.push_back(b);
+            }
+        l.visStatic = static_cast<float>(rays_.unoccludedFraction(Layer::Static, from, to));
+        l.visDynamic = static_cast<float>(rays_.unoccludedFraction(Layer::Dynamic, from, to));
+    }
+    return l;
+}
+
+LinkId Refiner::attach(const Link& link) {
+    const LinkId id = links_.add(link);
+    h_[link.receiver].links.push_back(id);
+    return id;
+}
+
+void Refiner::linkRoot() {
+    const ElementId root = h_.root();
+    Link l;
+    l.source = l.receiver = root;
+    l.live = true;
+    attach(l);
+}
+
+bool Refiner::canSplit(ElementId e) const {
+    const HElement& el = h_[e];
+    return el.isSurface() ? h_.canSubdivide(e) : !el.children.empty();
+}
+
+Refiner::Split Refiner::chooseSplit(const Link& link) const {
+    if (link.source == link.receiver) return canSplit(link.source) ? Split::Both : Split::None;
+    const bool cs = canSplit(link.source), cr = canSplit(link.receiver);
+    if (cs && cr) return h_[link.source].area > h_[link.receiver].area ? Split::Source : Split::Receiver;
+    if (cs) return Split::Source;
+    if (cr) return Split::Receiver;
+    return Split::None;
+}
+
+bool Refiner::wouldRefine(const Link& link) const {
+    if (chooseSplit(link) == Split::None) return false;
+    if (!admissible(link.source, link.receiver)) return true;
+    // Partly occluded links are judged by their unoccluded transfer, so that
+    // shadow boundaries get refined.
+    const double v = link.visibility();
+    const double f = (v > 0.0 && v < 1.0) ? link.unoccluded : link.formFactor();
+    // BF, and the same bound on how much the transfer varies across the receiver.
+    const double bound = luminance(h_[link.source].radiosity) * h_[link.receiver].area *
+                         std::max(f, double(link.spread) * v);
+    return bound > settings_.epsilon * settings_.referencePower;
+}
+
+std::vector<std::pair<ElementId, ElementId>> Refiner::childPairs(const Link& link) {
+    std::vector<std::pair<ElementId, ElementId>> pairs;
+    const ElementId s = link.source, r = link.receiver;
+    switch (chooseSplit(link)) {
+        case Split::None:
+            break;
+        case Split::Source:
+            h_.subdivide(s);
+            for (ElementId k : h_[s].children) pairs.emplace_back(k, r);
+            break;
+        case Split::Receiver:
+            h_.subdivide(r);
+            for (ElementId k : h_[r].children) pairs.emplace_back(s, k);
+            break;
+        case Split::Both:
+            h_.subdivide(s);
+            for (ElementId a : h_[s].children)
+                for (ElementId b : h_[s].children)
+                    if (a != b || !h_[a].isSurface()) pairs.emplace_back(a, b);
+            break;
+    }
+    return pairs;
+}
+
+void Refiner::refine(LinkId id, std::vector<LinkId>& created) {
+    const Link parent = links_[id];
+    const auto pairs = childPairs(parent);
+    std::vector<Link> computed(pairs.size());
+    tbb::parallel_for(std::size_t(0), pairs.size(),
+                      [&](std::size_t i) { computed[i] = compute(pairs[i].first, pairs[i].second); });
+    for (const Link& l : computed)
+        if (l.live) created.push_back(attach(l));
+    // The refined link stays as a p-link on its receiver.
+    HElement& r = h_[parent.receiver];
+    r.links.erase(std::find(r.links.begin(), r.links.end(), id));
+    r.plinks.push_back(id);
+    links_[id].passive = true;
+}
+
+std::size_t Refiner::refineAll() {
+    std::vector<LinkId> wave;
+    for (ElementId e = 0; e < h_.size(); ++e)
+        for (LinkId l : h_[e].links) wave.push_back(l);
+    std::size_t refined = 0;
+    while (!wave.empty()) {
+        std::vector<LinkId> next;
+        for (LinkId id : wave) {
+            if (!wouldRefine(links_[id])) continue;
+            if (links_.liveCount() >= settings_.maxLinks) {
+                capReached_ = true;
+                return refined;
+            }
+            refine(id, next);
+            ++refined;
+        }
+        wave = std::move(next);
+    }
+    return refined;
+}
+
+}  // namespace rad

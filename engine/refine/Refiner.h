@@ -1,0 +1,85 @@
+#pragma once
+// BF refinement (Hanrahan et al. 1991) with clusters (Sillion 1995). Links
+// are created with their form factor and both visibility parts; a refined
+// link stays on its receiver as a p-link (paper sec. 3.1), so the line-space
+// hierarchy exists from the first solve.
+
+#include <cstddef>
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "hierarchy/Hierarchy.h"
+#include "links/Link.h"
+
+namespace rad {
+
+class RayCaster;
+
+struct RefineSettings {
+    // A link is refined while B_s * F * A_r exceeds epsilon times the total
+    // emitted power: relative, so the same epsilon suits any scene scale.
+    double epsilon = 2e-4;
+    double referencePower = 1.0;  // total emitted power (luminance)
+    int samplesPerSide = 4;       // visibility rays: samples on the source x on the receiver
+    std::size_t maxLinks = 4'000'000;  // memory cap on live links and p-links
+};
+
+class Refiner {
+public:
+    Refiner(Hierarchy& hierarchy, LinkStore& links, const RayCaster& rays, RefineSettings settings);
+
+    // The index range of the dynamic object's cluster: links touching it are
+    // kept even when they carry nothing in the current position.
+    void setDynamicRange(std::optional<IndexRange> range) { dynamicRange_ = range; }
+    // Recomputes the visibility sample points of the clusters in a subtree
+    // (after it moved).
+    void refreshClusterSamples(ElementId subtree);
+
+    // The link s -> r computed but not attached; `live` is false when it
+    // carries nothing and never can (facing away, both static).
+    Link compute(ElementId s, ElementId r) const;
+    LinkId attach(const Link& link);
+
+    // The first link of a solve: the root cluster with itself.
+    void linkRoot();
+
+    // Refines every active link until the criterion holds everywhere (or the
+    // memory cap is met). Returns the number of links refined.
+    std::size_t refineAll();
+
+    bool wouldRefine(const Link& link) const;
+    // Subdivides the link's larger element and replaces the link by its
+    // line-space children; the link becomes a p-link. Appends the new links.
+    void refine(LinkId id, std::vector<LinkId>& created);
+
+    bool capReached() const { return capReached_; }
+    const RefineSettings& settings() const { return settings_; }
+    void setSettings(const RefineSettings& s) { settings_ = s; }
+
+    // Whether the point (cluster) approximation of the form factor is valid.
+    bool admissible(ElementId s, ElementId r) const;
+
+private:
+    enum class Split { None, Source, Receiver, Both };
+    Split chooseSplit(const Link& link) const;
+    bool canSplit(ElementId e) const;
+    FormFactorEstimate unoccludedFormFactor(ElementId s, ElementId r) const;
+    std::vector<glm::dvec3> samplePoints(ElementId e) const;
+    bool touchesDynamic(ElementId e) const;
+    std::vector<std::pair<ElementId, ElementId>> childPairs(const Link& link);
+
+    Hierarchy& h_;
+    LinkStore& links_;
+    const RayCaster& rays_;
+    RefineSettings settings_;
+    std::optional<IndexRange> dynamicRange_;
+    // Per cluster: points on its surfaces, stratified by area, for visibility rays.
+    std::vector<std::array<glm::dvec3, 4>> clusterSamples_;
+    bool capReached_ = false;
+};
+
+// Luminance of linear RGB (Rec. 709), the scalar used for error estimates.
+inline double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+}  // namespace rad

@@ -1,0 +1,709 @@
+#include "scene/GltfImport.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <glm/gtc/quaternion.hpp>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace rad {
+namespace {
+
+// A triangle in world space before it becomes a Polygon: kept apart so that
+// degenerate ones can be dropped and neighbours merged into quads once the
+// scene size is known.
+struct WorldTriangle {
+    std::array<glm::dvec3, 3> v;
+    std::uint32_t material = 0;
+};
+
+struct PendingObject {
+    Object object;
+    std::string item;  // "node 'X'", for notes
+    std::vector<WorldTriangle> triangles;
+};
+
+// tinygltf's messages span several lines; a SceneError is one line.
+std::string oneLine(const std::string& text) {
+    std::string out;
+    bool pendingSeparator = false;
+    for (char c : text) {
+        if (c == '\n' || c == '\r') {
+            pendingSeparator = !out.empty();
+            continue;
+        }
+        if (pendingSeparator) {
+            out += "; ";
+            pendingSeparator = false;
+        }
+        out += c;
+    }
+    while (!out.empty() && std::isspace(static_cast<unsigned char>(out.back()))) out.pop_back();
+    return out;
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+std::string quoted(const std::string& kind, const std::string& name, std::size_t index) {
+    if (name.empty()) return kind + " " + std::to_string(index);
+    return kind + " '" + name + "'";
+}
+
+const char* modeName(int mode) {
+    switch (mode) {
+        case TINYGLTF_MODE_POINTS:
+            return "POINTS";
+        case TINYGLTF_MODE_LINE:
+            return "LINES";
+        case TINYGLTF_MODE_LINE_LOOP:
+            return "LINE_LOOP";
+        case TINYGLTF_MODE_LINE_STRIP:
+            return "LINE_STRIP";
+        case TINYGLTF_MODE_TRIANGLE_STRIP:
+            return "TRIANGLE_STRIP";
+        case TINYGLTF_MODE_TRIANGLE_FAN:
+            return "TRIANGLE_FAN";
+        default:
+            return "unknown";
+    }
+}
+
+double srgbToLinear(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+bool allFinite(const std::vector<double>& values) {
+    return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+}
+
+bool allFinite(const glm::dmat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+double triangleArea(const WorldTriangle& t) {
+    return 0.5 * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+}
+
+glm::dvec3 triangleNormal(const WorldTriangle& t) {
+    const glm::dvec3 n = glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
+    const double len = glm::length(n);
+    return len > 0.0 ? n / len : glm::dvec3(0.0);
+}
+
+// True when the quad q is strictly convex and turns the same way as n.
+bool strictlyConvex(const std::array<glm::dvec3, 4>& q, const glm::dvec3& n) {
+    for (int i = 0; i < 4; ++i) {
+        const glm::dvec3 e1 = q[(i + 1) % 4] - q[i];
+        const glm::dvec3 e2 = q[(i + 2) % 4] - q[(i + 1) % 4];
+        // sin of the turning angle must be clearly positive: a straight
+        // corner would make a quad that is really a triangle.
+        if (glm::dot(glm::cross(e1, e2), n) <= 1e-9 * glm::length(e1) * glm::length(e2))
+            return false;
+    }
+    return true;
+}
+
+// The quad made of a and b when they share an edge (in opposite directions,
+// as consistent winding requires), lie in one plane and form a convex union.
+std::optional<std::array<glm::dvec3, 4>> mergeToQuad(const WorldTriangle& a,
+                                                     const WorldTriangle& b) {
+    if (a.material != b.material) return std::nullopt;
+    const glm::dvec3 na = triangleNormal(a);
+    const glm::dvec3 nb = triangleNormal(b);
+    if (glm::length(na - nb) > 1e-6) return std::nullopt;
+    for (int k = 0; k < 3; ++k) {
+        const glm::dvec3& p = a.v[k];
+        const glm::dvec3& q = a.v[(k + 1) % 3];
+        for (int j = 0; j < 3; ++j) {
+            // b runs q -> p where a runs p -> q.
+            if (b.v[j] != q || b.v[(j + 1) % 3] != p) continue;
+            const std::array<glm::dvec3, 4> quad = {q, a.v[(k + 2) % 3], p, b.v[(j + 2) % 3]};
+            if (strictlyConvex(quad, na)) return quad;
+            return std::nullopt;
+        }
+    }
+    return std::nullopt;
+}
+
+// A typed, range-checked view of an accessor's elements.
+struct AccessorView {
+    const unsigned char* base = nullptr;
+    std::size_t stride = 0;
+    std::size_t count = 0;
+    const unsigned char* element(std::size_t i) const { return base + i * stride; }
+};
+
+class Importer {
+  public:
+    Importer(const std::string& path, ImportNotes& notes) : path_(path), notes_(notes) {}
+
+    Scene run() {
+        load();
+        noteUnsupportedTopLevel();
+        walkScene();
+        Scene scene = finish();
+        scene.sourcePath = path_;
+        return scene;
+    }
+
+  private:
+    [[noreturn]] void fail(const std::string& item, const std::string& problem) const {
+        throw SceneError(path_ + ": " + item + ": " + problem);
+    }
+
+    void note(const std::string& line) { notes_.lines.push_back(line); }
+
+    void load() {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(path_, ec))
+            fail("file", "does not exist or is not a file");
+        const std::string ext = lowerExtension(path_);
+        tinygltf::TinyGLTF loader;
+        std::string err;
+        std::string warn;
+        bool ok = false;
+        if (ext == ".glb") {
+            ok = loader.LoadBinaryFromFile(&model_, &err, &warn, path_);
+        } else if (ext == ".gltf") {
+            ok = loader.LoadASCIIFromFile(&model_, &err, &warn, path_);
+        } else {
+            fail("file", "unknown extension '" + ext + "', expected .gltf or .glb");
+        }
+        if (!warn.empty()) note("tinygltf: " + oneLine(warn));
+        if (!ok) fail("glTF", err.empty() ? "could not be parsed" : oneLine(err));
+    }
+
+    void noteUnsupportedTopLevel() {
+        if (!model_.animations.empty())
+            note(std::to_string(model_.animations.size()) + " animation(s) ignored");
+        if (!model_.skins.empty()) note(std::to_string(model_.skins.size()) + " skin(s) ignored");
+        if (!model_.lights.empty())
+            note(std::to_string(model_.lights.size()) +
+                 " punctual light(s) ignored: only emissive surfaces emit");
+        for (const std::string& ext : model_.extensionsUsed) {
+            if (ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_unlit")
+                note("extension " + ext + " ignored");
+        }
+    }
+
+    // Depth-first, pre-order: that order decides which camera is "first".
+    void walkScene() {
+        std::vector<int> roots;
+        if (!model_.scenes.empty()) {
+            int sceneIndex = model_.defaultScene;
+            if (sceneIndex < 0 || sceneIndex >= static_cast<int>(model_.scenes.size()))
+                sceneIndex = 0;
+            if (model_.scenes.size() > 1)
+                note("file has " + std::to_string(model_.scenes.size()) +
+                     " scenes; imported scene " + std::to_string(sceneIndex));
+            roots = model_.scenes[sceneIndex].nodes;
+        } else {
+            // No scene: every node that is nobody's child is a root.
+            std::vector<bool> isChild(model_.nodes.size(), false);
+            for (const tinygltf::Node& n : model_.nodes)
+                for (int c : n.children)
+                    if (c >= 0 && c < static_cast<int>(isChild.size())) isChild[c] = true;
+            for (std::size_t i = 0; i < isChild.size(); ++i)
+                if (!isChild[i]) roots.push_back(static_cast<int>(i));
+            note("file has no scene; imported all root nodes");
+        }
+        visited_.assign(model_.nodes.size(), false);
+        for (int r : roots) visitNode(r, glm::dmat4(1.0));
+    }
+
+    const tinygltf::Node& nodeAt(int index, const std::string& from) const {
+        if (index < 0 || index >= static_cast<int>(model_.nodes.size()))
+            fail(from, "refers to node " + std::to_string(index) + " which does not exist");
+        return model_.nodes[index];
+    }
+
+    std::string nodeItem(int index) const {
+        return quoted("node", model_.nodes[index].name, static_cast<std::size_t>(index));
+    }
+
+    glm::dmat4 localTransform(const tinygltf::Node& node, const std::string& item) const {
+        if (!node.matrix.empty()) {
+            if (node.matrix.size() != 16) fail(item, "matrix must have 16 numbers");
+            if (!allFinite(node.matrix)) fail(item, "matrix contains NaN or Inf");
+            glm::dmat4 m(1.0);
+            // glTF matrices are column-major, as glm's are.
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[4 * c + r];
+            return m;
+        }
+        if (!allFinite(node.translation) || !allFinite(node.rotation) || !allFinite(node.scale))
+            fail(item, "translation, rotation or scale contains NaN or Inf");
+        glm::dmat4 t(1.0);
+        glm::dmat4 r(1.0);
+        glm::dmat4 s(1.0);
+        if (node.translation.size() == 3)
+            t[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
+        if (node.rotation.size() == 4) {
+            // glTF stores x, y, z, w; glm's constructor takes w first.
+            glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+            const double len = glm::length(q);
+            if (len == 0.0) fail(item, "rotation quaternion has zero length");
+            r = glm::mat4_cast(q / len);
+        }
+        if (node.scale.size() == 3) {
+            s[0][0] = node.scale[0];
+            s[1][1] = node.scale[1];
+            s[2][2] = node.scale[2];
+        }
+        return t * r * s;
+    }
+
+    void visitNode(int index, const glm::dmat4& parentWorld) {
+        const tinygltf::Node& node = nodeAt(index, "scene");
+        const std::string item = nodeItem(index);
+        if (visited_[index])
+            fail(item, "is reached twice in the node tree (cycle or shared child)");
+        visited_[index] = true;
+
+        const glm::dmat4 world = parentWorld * localTransform(node, item);
+        if (!allFinite(world)) fail(item, "world transform overflows to NaN or Inf");
+
+        if (node.camera >= 0) visitCamera(node.camera, world, item);
+        if (node.skin >= 0) note(item + ": skin ignored");
+        if (!node.weights.empty()) note(item + ": morph weights ignored");
+        if (!node.extensions.empty()) note(item + ": node extensions ignored");
+        if (node.mesh >= 0) addObject(index, world);
+
+        for (int child : node.children) {
+            nodeAt(child, item);
+            visitNode(child, world);
+        }
+    }
+
+    void visitCamera(int cameraIndex, const glm::dmat4& world, const std::string& item) {
+        if (cameraIndex >= static_cast<int>(model_.cameras.size()))
+            fail(item, "refers to camera " + std::to_string(cameraIndex) + " which does not exist");
+        const tinygltf::Camera& cam = model_.cameras[cameraIndex];
+        if (cam.type != "perspective") {
+            note(item + ": " + cam.type + " camera ignored, only perspective cameras are used");
+            return;
+        }
+        if (camera_) {
+            note(item + ": camera ignored, the first perspective camera is used");
+            return;
+        }
+        const glm::dmat3 basis(world);
+        Camera c;
+        c.position = glm::dvec3(world[3]);
+        c.forward = glm::normalize(basis * glm::dvec3(0.0, 0.0, -1.0));
+        const glm::dvec3 up = basis * glm::dvec3(0.0, 1.0, 0.0);
+        c.up = glm::normalize(up - glm::dot(up, c.forward) * c.forward);
+        if (!std::isfinite(c.forward.x + c.forward.y + c.forward.z + c.up.x + c.up.y + c.up.z))
+            fail(item, "camera transform is degenerate");
+        const tinygltf::PerspectiveCamera& p = cam.perspective;
+        if (!(p.yfov > 0.0) || !std::isfinite(p.yfov)) fail(item, "camera yfov must be positive");
+        c.yfov = p.yfov;
+        if (p.aspectRatio > 0.0 && std::isfinite(p.aspectRatio)) c.aspectRatio = p.aspectRatio;
+        if (p.znear > 0.0 && std::isfinite(p.znear)) c.znear = p.znear;
+        camera_ = c;
+    }
+
+    std::string uniqueName(int nodeIndex) {
+        const tinygltf::Node& node = model_.nodes[nodeIndex];
+        std::string base = node.name.empty() ? "node" + std::to_string(nodeIndex) : node.name;
+        std::string name = base;
+        for (int k = 2; usedNames_.count(name) != 0; ++k) name = base + "#" + std::to_string(k);
+        if (name != base) note(nodeItem(nodeIndex) + ": name repeats, renamed '" + name + "'");
+        usedNames_.insert(name);
+        return name;
+    }
+
+    void addObject(int nodeIndex, const glm::dmat4& world) {
+        const tinygltf::Node& node = model_.nodes[nodeIndex];
+        const std::string item = nodeItem(nodeIndex);
+        if (node.mesh >= static_cast<int>(model_.meshes.size()))
+            fail(item, "refers to mesh " + std::to_string(node.mesh) + " which does not exist");
+
+        PendingObject pending;
+        pending.item = item;
+        pending.object.name = uniqueName(nodeIndex);
+        pending.object.worldFromLocal = world;
+        pending.object.dynamic = node.extras.IsObject() && node.extras.Has("dynamic") &&
+                                 node.extras.Get("dynamic").IsBool() &&
+                                 node.extras.Get("dynamic").Get<bool>();
+
+        const tinygltf::Mesh& mesh = model_.meshes[node.mesh];
+        const std::string meshItem = quoted("mesh", mesh.name, static_cast<std::size_t>(node.mesh));
+        // A mirroring transform turns counter-clockwise into clockwise; swap
+        // two vertices so the front stays the front.
+        const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            addPrimitive(mesh.primitives[p], meshItem + " primitive " + std::to_string(p), world,
+                         mirrored, pending.triangles);
+        }
+        pending_.push_back(std::move(pending));
+    }
+
+    AccessorView viewAccessor(int accessorIndex, const std::string& item, int type,
+                              std::size_t componentSize) const {
+        if (accessorIndex < 0 || accessorIndex >= static_cast<int>(model_.accessors.size()))
+            fail(item, "accessor " + std::to_string(accessorIndex) + " does not exist");
+        const tinygltf::Accessor& acc = model_.accessors[accessorIndex];
+        const std::string accItem = item + " accessor " + std::to_string(accessorIndex);
+        if (acc.type != type) fail(accItem, "has the wrong type");
+        if (acc.sparse.isSparse) fail(accItem, "sparse accessors are not supported");
+        if (acc.bufferView < 0 || acc.bufferView >= static_cast<int>(model_.bufferViews.size()))
+            fail(accItem, "has no valid bufferView");
+        const tinygltf::BufferView& bv = model_.bufferViews[acc.bufferView];
+        const std::string bvItem = accItem + " bufferView " + std::to_string(acc.bufferView);
+        if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model_.buffers.size()))
+            fail(bvItem, "has no valid buffer");
+        const tinygltf::Buffer& buf = model_.buffers[bv.buffer];
+        if (bv.byteOffset > buf.data.size() || bv.byteLength > buf.data.size() - bv.byteOffset)
+            fail(bvItem, "range [" + std::to_string(bv.byteOffset) + ", " +
+                             std::to_string(bv.byteOffset + bv.byteLength) + ") exceeds buffer " +
+                             std::to_string(bv.buffer) + " of " + std::to_string(buf.data.size()) +
+                             " bytes (truncated buffer?)");
+
+        const std::size_t elementSize =
+            componentSize * static_cast<std::size_t>(tinygltf::GetNumComponentsInType(type));
+        const std::size_t stride = bv.byteStride != 0 ? bv.byteStride : elementSize;
+        if (stride < elementSize) fail(bvItem, "byteStride is smaller than one element");
+        AccessorView view;
+        view.stride = stride;
+        view.count = acc.count;
+        if (acc.count == 0) return view;
+        // Overflow-safe form of byteOffset + (count-1)*stride + elementSize <= byteLength.
+        const std::size_t available = bv.byteLength;
+        const bool fits = acc.byteOffset <= available &&
+                          elementSize <= available - acc.byteOffset &&
+                          (acc.count - 1) <= (available - acc.byteOffset - elementSize) / stride;
+        if (!fits)
+            fail(accItem, std::to_string(acc.count) + " elements at byteOffset " +
+                              std::to_string(acc.byteOffset) + " exceed bufferView " +
+                              std::to_string(acc.bufferView) + " of " + std::to_string(available) +
+                              " bytes (truncated buffer?)");
+        view.base = buf.data.data() + bv.byteOffset + acc.byteOffset;
+        return view;
+    }
+
+    std::vector<glm::dvec3> readPositions(const tinygltf::Primitive& prim,
+                                          const std::string& item) const {
+        const auto it = prim.attributes.find("POSITION");
+        if (it == prim.attributes.end()) fail(item, "has no POSITION attribute");
+        const int index = it->second;
+        if (index >= 0 && index < static_cast<int>(model_.accessors.size()) &&
+            model_.accessors[index].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+            fail(item + " POSITION accessor " + std::to_string(index),
+                 "component type must be FLOAT");
+        const AccessorView view = viewAccessor(index, item + " POSITION", TINYGLTF_TYPE_VEC3, 4);
+        std::vector<glm::dvec3> out(view.count);
+        for (std::size_t i = 0; i < view.count; ++i) {
+            float xyz[3];
+            std::memcpy(xyz, view.element(i), sizeof xyz);  // may be unaligned
+            if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
+                fail(item, "POSITION " + std::to_string(i) + " is NaN or Inf");
+            out[i] = glm::dvec3(xyz[0], xyz[1], xyz[2]);
+        }
+        return out;
+    }
+
+    std::vector<std::uint32_t> readIndices(int accessorIndex, const std::string& item) const {
+        if (accessorIndex >= static_cast<int>(model_.accessors.size()))
+            fail(item, "indices accessor " + std::to_string(accessorIndex) + " does not exist");
+        const int componentType = model_.accessors[accessorIndex].componentType;
+        std::size_t size = 0;
+        switch (componentType) {
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                size = 1;
+                break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+                size = 2;
+                break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+                size = 4;
+                break;
+            default:
+                fail(item + " indices accessor " + std::to_string(accessorIndex),
+                     "component type " + std::to_string(componentType) +
+                         " is not an unsigned byte, short or int");
+        }
+        const AccessorView view =
+            viewAccessor(accessorIndex, item + " indices", TINYGLTF_TYPE_SCALAR, size);
+        std::vector<std::uint32_t> out(view.count);
+        for (std::size_t i = 0; i < view.count; ++i) {
+            const unsigned char* p = view.element(i);
+            if (size == 1) {
+                out[i] = *p;
+            } else if (size == 2) {
+                std::uint16_t v;
+                std::memcpy(&v, p, 2);
+                out[i] = v;
+            } else {
+                std::memcpy(&out[i], p, 4);
+            }
+        }
+        return out;
+    }
+
+    void addPrimitive(const tinygltf::Primitive& prim, const std::string& item,
+                      const glm::dmat4& world, bool mirrored, std::vector<WorldTriangle>& out) {
+        if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
+            fail(item, std::string("mode ") + modeName(prim.mode) + " (" +
+                           std::to_string(prim.mode) + ") is not supported, only TRIANGLES");
+        if (!prim.targets.empty()) note(item + ": morph targets ignored");
+        const std::uint32_t material = materialIndex(prim.material, item);
+        const std::vector<glm::dvec3> local = readPositions(prim, item);
+        std::vector<std::uint32_t> indices;
+        if (prim.indices >= 0) {
+            indices = readIndices(prim.indices, item);
+        } else {
+            indices.resize(local.size());
+            for (std::size_t i = 0; i < indices.size(); ++i)
+                indices[i] = static_cast<std::uint32_t>(i);
+        }
+        if (indices.size() % 3 != 0)
+            fail(item, std::to_string(indices.size()) + " vertices do not make whole triangles");
+
+        std::vector<glm::dvec3> worldPos(local.size());
+        for (std::size_t i = 0; i < local.size(); ++i)
+            worldPos[i] = glm::dvec3(world * glm::dvec4(local[i], 1.0));
+
+        for (std::size_t t = 0; t < indices.size(); t += 3) {
+            WorldTriangle tri;
+            tri.material = material;
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t idx = indices[t + k];
+                if (idx >= worldPos.size())
+                    fail(item, "index " + std::to_string(idx) + " is out of range (" +
+                                   std::to_string(worldPos.size()) + " vertices)");
+                tri.v[k] = worldPos[idx];
+            }
+            if (mirrored) std::swap(tri.v[1], tri.v[2]);
+            out.push_back(tri);
+        }
+    }
+
+    std::uint32_t materialIndex(int gltfIndex, const std::string& item) {
+        if (gltfIndex < 0) {
+            if (!defaultMaterial_) {
+                defaultMaterial_ = static_cast<std::uint32_t>(materials_.size());
+                materials_.push_back({"default", glm::dvec3(0.5), glm::dvec3(0.0)});
+            }
+            return *defaultMaterial_;
+        }
+        if (gltfIndex >= static_cast<int>(model_.materials.size()))
+            fail(item, "material " + std::to_string(gltfIndex) + " does not exist");
+        const auto found = materialMap_.find(gltfIndex);
+        if (found != materialMap_.end()) return found->second;
+        const auto index = static_cast<std::uint32_t>(materials_.size());
+        materials_.push_back(convertMaterial(gltfIndex));
+        materialMap_[gltfIndex] = index;
+        return index;
+    }
+
+    Material convertMaterial(int index) {
+        const tinygltf::Material& m = model_.materials[index];
+        const std::string item = quoted("material", m.name, static_cast<std::size_t>(index));
+        Material out;
+        out.name = m.name.empty() ? "material" + std::to_string(index) : m.name;
+
+        const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() < 3 || !allFinite(pbr.baseColorFactor))
+            fail(item, "baseColorFactor is missing numbers or contains NaN or Inf");
+        glm::dvec3 rho(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]);
+        if (pbr.baseColorTexture.index >= 0) rho *= textureMean(pbr.baseColorTexture.index, item);
+        for (int c = 0; c < 3; ++c) {
+            if (!(rho[c] >= 0.0 && rho[c] < 1.0)) {
+                std::ostringstream s;
+                s << "reflectance " << rho[c] << " in channel " << c
+                  << " is outside [0,1) (baseColorFactor times base colour texture mean)";
+                fail(item, s.str());
+            }
+        }
+        out.reflectance = rho;
+
+        if (m.emissiveFactor.size() < 3 || !allFinite(m.emissiveFactor))
+            fail(item, "emissiveFactor is missing numbers or contains NaN or Inf");
+        double strength = 1.0;
+        const auto ext = m.extensions.find("KHR_materials_emissive_strength");
+        if (ext != m.extensions.end() && ext->second.Has("emissiveStrength")) {
+            const tinygltf::Value& v = ext->second.Get("emissiveStrength");
+            if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()))
+                fail(item, "emissiveStrength is not a finite number");
+            strength = v.GetNumberAsDouble();
+        }
+        out.emission =
+            glm::dvec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]) * strength;
+        if (!std::isfinite(out.emission.x + out.emission.y + out.emission.z))
+            fail(item, "emissiveFactor times emissiveStrength overflows to Inf");
+        for (int c = 0; c < 3; ++c) {
+            if (out.emission[c] < 0.0) {
+                std::ostringstream s;
+                s << "emission " << out.emission[c] << " in channel " << c << " is negative";
+                fail(item, s.str());
+            }
+        }
+        noteIgnoredMaterialParts(m, item);
+        return out;
+    }
+
+    void noteIgnoredMaterialParts(const tinygltf::Material& m, const std::string& item) {
+        if (m.emissiveTexture.index >= 0) note(item + ": emissiveTexture ignored");
+        if (m.normalTexture.index >= 0) note(item + ": normalTexture ignored");
+        if (m.occlusionTexture.index >= 0) note(item + ": occlusionTexture ignored");
+        if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+            note(item + ": metallicRoughnessTexture ignored");
+        if (m.doubleSided) note(item + ": doubleSided ignored, polygons are one-sided");
+        for (const auto& [name, value] : m.extensions) {
+            if (name != "KHR_materials_emissive_strength")
+                note(item + ": extension " + name + " ignored");
+        }
+    }
+
+    // Mean texel colour in linear space: texels are sRGB-encoded, and the
+    // average of light must be taken after decoding.
+    glm::dvec3 textureMean(int textureIndex, const std::string& item) {
+        if (textureIndex >= static_cast<int>(model_.textures.size()))
+            fail(item, "baseColorTexture " + std::to_string(textureIndex) + " does not exist");
+        const int source = model_.textures[textureIndex].source;
+        if (source < 0 || source >= static_cast<int>(model_.images.size())) {
+            note(item + ": baseColorTexture has no usable image, ignored");
+            return glm::dvec3(1.0);
+        }
+        const auto cached = textureMeans_.find(source);
+        if (cached != textureMeans_.end()) return cached->second;
+        const tinygltf::Image& img = model_.images[source];
+        glm::dvec3 mean(1.0);
+        const std::size_t bytesPerChannel = img.bits == 16 ? 2 : 1;
+        const std::size_t texels =
+            img.width > 0 && img.height > 0
+                ? static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height)
+                : 0;
+        if (texels == 0 || img.component < 1 || (img.bits != 8 && img.bits != 16) ||
+            img.image.size() < texels * img.component * bytesPerChannel) {
+            note(item + ": baseColorTexture image could not be decoded, ignored");
+        } else {
+            mean = meanLinear(img, texels, bytesPerChannel);
+        }
+        textureMeans_[source] = mean;
+        return mean;
+    }
+
+    static glm::dvec3 meanLinear(const tinygltf::Image& img, std::size_t texels,
+                                 std::size_t bytesPerChannel) {
+        const double maxValue = bytesPerChannel == 2 ? 65535.0 : 255.0;
+        const auto channel = [&](std::size_t texel, int c) {
+            const std::size_t offset = (texel * img.component + c) * bytesPerChannel;
+            std::uint32_t v = img.image[offset];
+            if (bytesPerChannel == 2) {
+                std::uint16_t v16;
+                std::memcpy(&v16, &img.image[offset], 2);
+                v = v16;
+            }
+            return srgbToLinear(v / maxValue);
+        };
+        glm::dvec3 sum(0.0);
+        for (std::size_t t = 0; t < texels; ++t) {
+            // Grey images (1 or 2 components) use channel 0 for r, g and b.
+            const bool grey = img.component < 3;
+            sum += glm::dvec3(channel(t, 0), channel(t, grey ? 0 : 1), channel(t, grey ? 0 : 2));
+        }
+        return sum / static_cast<double>(texels);
+    }
+
+    // Drops degenerate triangles, merges quads and lays the polygons out
+    // object by object.
+    Scene finish() {
+        Aabb box;
+        for (const PendingObject& o : pending_)
+            for (const WorldTriangle& t : o.triangles)
+                for (const glm::dvec3& v : t.v) box.extend(v);
+        const double diagonal2 = box.empty() ? 0.0 : glm::dot(box.extent(), box.extent());
+        const double minArea = 1e-12 * diagonal2;
+
+        std::size_t dropped = 0;
+        Scene scene;
+        scene.materials = std::move(materials_);
+        scene.camera = camera_;
+        for (PendingObject& pending : pending_) {
+            std::vector<WorldTriangle> kept;
+            for (const WorldTriangle& t : pending.triangles) {
+                if (triangleArea(t) <= minArea) {
+                    ++dropped;
+                } else {
+                    kept.push_back(t);
+                }
+            }
+            Object object = pending.object;
+            object.firstPolygon = static_cast<std::uint32_t>(scene.polygons.size());
+            object.polygonCount = 0;
+            const auto objectIndex = static_cast<std::uint32_t>(scene.objects.size());
+            appendPolygons(kept, objectIndex, scene.polygons);
+            object.polygonCount =
+                static_cast<std::uint32_t>(scene.polygons.size()) - object.firstPolygon;
+            if (object.polygonCount == 0) {
+                note(pending.item + ": no polygons, not imported as an object");
+                continue;
+            }
+            scene.objects.push_back(std::move(object));
+        }
+        notes_.degenerateTriangles += dropped;
+        if (dropped > 0) note(std::to_string(dropped) + " degenerate triangle(s) dropped");
+        if (scene.polygons.empty()) fail("scene", "contains no polygons");
+        return scene;
+    }
+
+    void appendPolygons(const std::vector<WorldTriangle>& tris, std::uint32_t object,
+                        std::vector<Polygon>& out) {
+        for (std::size_t i = 0; i < tris.size();) {
+            Polygon p;
+            p.material = tris[i].material;
+            p.object = object;
+            const auto quad =
+                i + 1 < tris.size() ? mergeToQuad(tris[i], tris[i + 1]) : std::nullopt;
+            if (quad) {
+                p.vertexCount = 4;
+                p.vertices = *quad;
+                ++notes_.mergedQuads;
+                i += 2;
+            } else {
+                p.vertexCount = 3;
+                p.vertices = {tris[i].v[0], tris[i].v[1], tris[i].v[2], glm::dvec3(0.0)};
+                i += 1;
+            }
+            out.push_back(p);
+        }
+    }
+
+    std::string path_;
+    ImportNotes& notes_;
+    tinygltf::Model model_;
+    std::vector<bool> visited_;
+    std::set<std::string> usedNames_;
+    std::vector<PendingObject> pending_;
+    std::vector<Material> materials_;
+    std::map<int, std::uint32_t> materialMap_;
+    std::optional<std::uint32_t> defaultMaterial_;
+    std::map<int, glm::dvec3> textureMeans_;
+    std::optional<Camera> camera_;
+};
+
+}  // namespace
+
+Scene loadGltf(const std::string& path, ImportNotes* notes) {
+    ImportNotes local;
+    Importer importer(path, notes != nullptr ? *notes : local);
+    return importer.run();
+}
+
+}  // namespace rad

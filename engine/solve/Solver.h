@@ -1,0 +1,57 @@
+#pragma once
+// Gather and push-pull (Hanrahan et al. 1991; with clusters, Sillion 1995),
+// iterated to convergence in double precision.
+
+#include <functional>
+
+#include "hierarchy/Hierarchy.h"
+#include "links/Link.h"
+
+namespace rad {
+
+struct SolveSettings {
+    // Converged when the remaining error, extrapolated from the last two
+    // sweeps as a geometric series (delta * r / (1 - r)), is below this
+    // fraction of the mean radiosity.
+    double tolerance = 1e-4;
+    int maxIterations = 5000;
+};
+
+struct SolveResult {
+    int iterations = 0;
+    bool converged = false;
+    double lastChange = 0.0;      // relative change in the last sweep
+    double estimatedError = 0.0;  // relative, extrapolated
+};
+
+// Power balance over the leaves (luminance, in scene units of power).
+struct EnergyBalance {
+    double emitted = 0.0;    // sum E A
+    double received = 0.0;   // sum H A, H the irradiance arriving
+    double absorbed = 0.0;   // sum (1 - rho) H A
+    double reflected = 0.0;  // sum rho H A
+    double escaped = 0.0;    // emitted - absorbed: leaves the scene (open scenes) or error
+};
+
+class Solver {
+public:
+    Solver(Hierarchy& hierarchy, LinkStore& links) : h_(hierarchy), links_(links) {}
+
+    // I_r = sum over active links of F B_s, for every element; records the
+    // form factor gathered on each link.
+    void gatherAll();
+    // Pushes irradiance down, computes leaf radiosity, pulls area-weighted
+    // means up. Returns the area-weighted relative change of leaf radiosity.
+    double pushPull();
+    // Iterates gather and push-pull until converged or maxIterations.
+    SolveResult solve(const SolveSettings& settings, const std::function<void(int, double)>& progress = {});
+
+    EnergyBalance energy() const;
+
+private:
+    glm::dvec3 pushPull(ElementId e, const glm::dvec3& down, double& change, double& total);
+    Hierarchy& h_;
+    LinkStore& links_;
+};
+
+}  // namespace rad

@@ -1,0 +1,242 @@
+// Two-layer Embree visibility: blockers, segment ends on surfaces, layer independence, picking,
+// and the same answers at millimetre and kilometre scale.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "geometry/RayCaster.h"
+
+namespace rad {
+namespace {
+
+// Axis-aligned square [x0,x1] x [y0,y1] at height z, facing +z.
+Polygon squareZ(double x0, double x1, double y0, double y1, double z) {
+    Polygon p;
+    p.vertices = {glm::dvec3(x0, y0, z), glm::dvec3(x1, y0, z), glm::dvec3(x1, y1, z),
+                  glm::dvec3(x0, y1, z)};
+    p.vertexCount = 4;
+    return p;
+}
+
+// Square [y0,y1] x [z0,z1] in the plane x = x0, facing +x.
+Polygon squareX(double y0, double y1, double z0, double z1, double x) {
+    Polygon p;
+    p.vertices = {glm::dvec3(x, y0, z0), glm::dvec3(x, y1, z0), glm::dvec3(x, y1, z1),
+                  glm::dvec3(x, y0, z1)};
+    p.vertexCount = 4;
+    return p;
+}
+
+std::vector<std::uint32_t> allIds(const Scene& s) {
+    std::vector<std::uint32_t> ids(s.polygons.size());
+    std::iota(ids.begin(), ids.end(), 0u);
+    return ids;
+}
+
+TEST(RayCaster, BlockerBlocksAndSegmentBesideDoesNot) {
+    Scene scene;
+    scene.polygons = {squareZ(-1, 1, -1, 1, 0)};
+    RayCaster rc;
+    rc.setLayer(Layer::Static, scene, allIds(scene));
+    EXPECT_TRUE(rc.occluded(Layer::Static, {0, 0, -1}, {0, 0, 1}));
+    EXPECT_TRUE(rc.occluded(Layer::Static, {0, 0, 1}, {0.5, 0.5, -1}));  // from the back too
+    EXPECT_FALSE(rc.occluded(Layer::Static, {3, 0, -1}, {3, 0, 1}));
+    EXPECT_FALSE(rc.occluded(Layer::Static, {0, 0, 0.5}, {0, 0, 2}));  // both ends above
+}
+
+TEST(RayCaster, FractionWithHalfTheSegmentsBlocked) {
+    Scene scene;
+    scene.polygons = {squareZ(-1, 1, -1, 1, 0)};
+    RayCaster rc;
+    rc.setLayer(Layer::Static, scene, allIds(scene));
+    std::vector<glm::dvec3> from, to;
+    for (int i = 0; i < 10; ++i) {
+        const double x = -1.9 + 0.4 * i;  // -1.9 .. 1.7: -0.7, -0.3, 0.1, 0.5, 0.9 cross the square
+        from.push_back({x, 0.3, -1});
+        to.push_back({x, -0.2, 1});
+    }
+    EXPECT_DOUBLE_EQ(rc.unoccludedFraction(Layer::Static, from, to), 0.5);
+    EXPECT_DOUBLE_EQ(rc.unoccludedFraction(Layer::Static, {}, {}), 1.0);
+}
+
+TEST(RayCaster, SegmentEndsOnAPolygonAreNotBlockedByIt) {
+    Scene scene;
+    scene.polygons = {squareZ(0, 1, 0, 1, 0), squareX(0, 1, 0, 1, 0), squareZ(0, 1, 0, 1, 1)};
+    RayCaster rc;
+    rc.setLayer(Layer::Static, scene, allIds(scene));
+    // Floor to ceiling, both ends on polygons of the layer.
+    EXPECT_FALSE(rc.occluded(Layer::Static, {0.3, 0.4, 0}, {0.7, 0.2, 1}));
+    // Floor to the wall, close to the shared corner, oblique.
+    EXPECT_FALSE(rc.occluded(Layer::Static, {0.02, 0.5, 0}, {0, 0.45, 0.03}));
+    // Steep grazing angle from the floor.
+    EXPECT_FALSE(rc.occluded(Layer::Static, {0.1, 0.1, 0}, {0.9, 0.9, 0.05}));
+    // On a triangulation seam (the quad's diagonal).
+    EXPECT_FALSE(rc.occluded(Layer::Static, {0.5, 0.5, 0}, {0.5, 0.5, 1}));
+}
+
+TEST(RayCaster, LayersAreIndependent) {
+    Scene scene;
+    scene.polygons = {squareZ(-5, 5, -5, 5, 0), squareZ(-0.5, 0.5, -0.5, 0.5, 1)};
+    RayCaster rc;
+    const std::uint32_t staticIds[] = {0};
+    const std::uint32_t dynamicIds[] = {1};
+    rc.setLayer(Layer::Static, scene, staticIds);
+    // Dynamic layer not set yet: nothing blocks there.
+    EXPECT_FALSE(rc.occluded(Layer::Dynamic, {0, 0, 0}, {0, 0, 2}));
+    rc.setLayer(Layer::Dynamic, scene, dynamicIds);
+    EXPECT_TRUE(rc.occluded(Layer::Dynamic, {0, 0, 0}, {0, 0, 2}));
+    EXPECT_FALSE(rc.occluded(Layer::Static, {0, 0, 0}, {0, 0, 2}));  // floor end is ignored
+    EXPECT_TRUE(rc.occluded(Layer::Static, {0, 0, -1}, {0, 0, 2}));
+    EXPECT_FALSE(rc.occluded(Layer::Dynamic, {0, 0, -1}, {3, 0, 2}));
+    // Emptying a layer.
+    rc.setLayer(Layer::Dynamic, scene, {});
+    EXPECT_FALSE(rc.occluded(Layer::Dynamic, {0, 0, 0}, {0, 0, 2}));
+    const std::uint32_t bad[] = {7};
+    EXPECT_THROW(rc.setLayer(Layer::Dynamic, scene, bad), std::out_of_range);
+}
+
+TEST(RayCaster, ReplacingTheDynamicLayerAfterAMove) {
+    Scene scene;
+    scene.polygons = {squareZ(-0.5, 0.5, -0.5, 0.5, 1)};
+    RayCaster rc;
+    const std::uint32_t ids[] = {0};
+    rc.setLayer(Layer::Dynamic, scene, ids);
+    const glm::dvec3 a(0, 0, 0), b(0, 0, 2), c(3, 0, 0), d(3, 0, 2);
+    EXPECT_TRUE(rc.occluded(Layer::Dynamic, a, b));
+    EXPECT_FALSE(rc.occluded(Layer::Dynamic, c, d));
+    for (glm::dvec3& v : scene.polygons[0].vertices) v.x += 3.0;  // the object moves
+    rc.setLayer(Layer::Dynamic, scene, ids);
+    EXPECT_FALSE(rc.occluded(Layer::Dynamic, a, b));
+    EXPECT_TRUE(rc.occluded(Layer::Dynamic, c, d));
+    // Moving the caster keeps the layers.
+    RayCaster moved = std::move(rc);
+    EXPECT_TRUE(moved.occluded(Layer::Dynamic, c, d));
+}
+
+TEST(RayCaster, IntersectReturnsTheNearestPolygonInEitherLayer) {
+    Scene scene;
+    scene.polygons = {squareZ(-1, 1, -1, 1, 1), squareZ(-1, 1, -1, 1, 2), squareZ(5, 6, 5, 6, 3)};
+    RayCaster rc;
+    EXPECT_FALSE(rc.intersect({0, 0, 5}, {0, 0, -1}, 100).has_value());  // nothing yet
+    const std::uint32_t s[] = {0, 2};
+    const std::uint32_t d[] = {1};
+    rc.setLayer(Layer::Static, scene, s);
+    rc.setLayer(Layer::Dynamic, scene, d);
+    auto hit = rc.intersect({0, 0, 5}, {0, 0, -1}, 100);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_EQ(hit->polygon, 1u);  // the dynamic one is nearer from above
+    EXPECT_NEAR(hit->t, 3.0, 1e-5);
+    hit = rc.intersect({0, 0, -5}, {0, 0, 1}, 100);  // from below the static one is nearer
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_EQ(hit->polygon, 0u);
+    EXPECT_NEAR(hit->t, 6.0, 1e-5);
+    hit = rc.intersect({5.5, 5.5, 10}, {0, 0, -2}, 100);  // t in units of the direction
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_EQ(hit->polygon, 2u);
+    EXPECT_NEAR(hit->t, 3.5, 1e-5);
+    EXPECT_FALSE(rc.intersect({0, 0, 5}, {0, 0, -1}, 2.5).has_value());  // beyond tmax
+    EXPECT_FALSE(rc.intersect({0, 0, 5}, {0, 0, 1}, 100).has_value());   // away
+}
+
+// The same room at scale s, rotated (so that no coordinate is exact in float) and offset from
+// the origin as real scenes are: a floor, a wall, a blocker at half height. at() maps room
+// coordinates in [0,1]^3 to the world.
+struct ScaledRoom {
+    double s;
+    glm::dvec3 o;
+    glm::dmat3 rot;
+    Scene scene;
+    explicit ScaledRoom(double scale) : s(scale), o(3 * scale, -2 * scale, 5 * scale) {
+        const double a = 0.3, b = 0.7;  // rotation about z then about x
+        const glm::dmat3 rz(std::cos(a), std::sin(a), 0, -std::sin(a), std::cos(a), 0, 0, 0, 1);
+        const glm::dmat3 rx(1, 0, 0, 0, std::cos(b), std::sin(b), 0, -std::sin(b), std::cos(b));
+        rot = rx * rz;
+        scene.polygons = {squareZ(0, 1, 0, 1, 0), squareX(0, 1, 0, 1, 0),
+                          squareZ(0.4, 0.6, 0.4, 0.6, 0.5)};
+        for (Polygon& p : scene.polygons)
+            for (glm::dvec3& v : p.vertices) v = at(v.x, v.y, v.z);
+    }
+    glm::dvec3 at(double x, double y, double z) const {
+        return o + s * (rot * glm::dvec3(x, y, z));
+    }
+    glm::dvec3 dir(double x, double y, double z) const { return rot * glm::dvec3(x, y, z); }
+};
+
+TEST(RayCaster, MillimetreAndKilometreScalesBehaveTheSame) {
+    for (double scale : {1e-3, 1.0, 1e3}) {
+        ScaledRoom room(scale);
+        RayCaster rc;
+        rc.setLayer(Layer::Static, room.scene, allIds(room.scene));
+        SCOPED_TRACE(scale);
+        // Through the blocker, from the floor.
+        EXPECT_TRUE(rc.occluded(Layer::Static, room.at(0.5, 0.5, 0), room.at(0.5, 0.5, 1)));
+        // A blocker 2% of the length from an end still blocks.
+        EXPECT_TRUE(rc.occluded(Layer::Static, room.at(0.5, 0.5, 0.51), room.at(0.45, 0.55, 0)));
+        // Beside the blocker.
+        EXPECT_FALSE(rc.occluded(Layer::Static, room.at(0.9, 0.9, 0), room.at(0.9, 0.9, 1)));
+        // Floor to wall near the corner: both ends on surfaces of the layer.
+        EXPECT_FALSE(rc.occluded(Layer::Static, room.at(0.01, 0.5, 0), room.at(0, 0.5, 0.01)));
+        // From the floor to the top of the blocker: the end on the blocker is ignored.
+        EXPECT_FALSE(rc.occluded(Layer::Static, room.at(0.2, 0.2, 0), room.at(0.5, 0.5, 0.5)));
+        // Grazing: a floor point a millionth of the room from the wall, to the wall.
+        EXPECT_FALSE(rc.occluded(Layer::Static, room.at(1e-6, 0.1, 0), room.at(0, 0.9, 0.3)));
+        // Random floor-to-wall segments: none is blocked by floor or wall (the blocker may).
+        std::mt19937 rng(7);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        std::vector<glm::dvec3> from, to;
+        for (int i = 0; i < 20000; ++i) {
+            from.push_back(room.at(u(rng) * (i % 2 ? 1.0 : 1e-3), u(rng), 0));
+            to.push_back(room.at(0, u(rng), u(rng)));
+        }
+        Scene noBlocker = room.scene;
+        noBlocker.polygons.pop_back();
+        RayCaster walls;
+        walls.setLayer(Layer::Static, noBlocker, allIds(noBlocker));
+        EXPECT_DOUBLE_EQ(walls.unoccludedFraction(Layer::Static, from, to), 1.0);
+        // Picking at scale.
+        auto hit = rc.intersect(room.at(0.5, 0.5, 2), room.dir(0, 0, -1), 10 * scale);
+        ASSERT_TRUE(hit.has_value());
+        EXPECT_EQ(hit->polygon, 2u);
+        EXPECT_NEAR(hit->t, 1.5 * scale, 1e-5 * scale);
+    }
+}
+
+TEST(RayCaster, ConcurrentQueriesAgreeWithSerialOnes) {
+    Scene scene;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 200; ++i) {
+        const glm::dvec3 c(u(rng), u(rng), u(rng));
+        scene.polygons.push_back(squareZ(c.x, c.x + 0.1, c.y, c.y + 0.1, c.z));
+    }
+    RayCaster rc;
+    rc.setLayer(Layer::Static, scene, allIds(scene));
+    std::vector<glm::dvec3> from, to;
+    for (int i = 0; i < 4000; ++i) {
+        from.push_back({u(rng), u(rng), -2});
+        to.push_back({u(rng), u(rng), 2});
+    }
+    std::vector<char> serial(from.size()), parallel(from.size());
+    for (std::size_t i = 0; i < from.size(); ++i)
+        serial[i] = rc.occluded(Layer::Static, from[i], to[i]);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            for (std::size_t i = t; i < from.size(); i += 4)
+                parallel[i] = rc.occluded(Layer::Static, from[i], to[i]);
+        });
+    for (std::thread& th : threads) th.join();
+    EXPECT_EQ(serial, parallel);
+    const double f = rc.unoccludedFraction(Layer::Static, from, to);
+    EXPECT_GT(f, 0.0);
+    EXPECT_LT(f, 1.0);
+}
+
+}  // namespace
+}  // namespace rad

@@ -1,0 +1,927 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "scene/GltfImport.h"
+
+namespace rad {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------
+// Helpers: a temporary directory and a small glTF writer (JSON text plus one
+// binary buffer, written embedded, as .glb or with an external .bin).
+
+class TempDir {
+  public:
+    TempDir() {
+        static std::atomic<int> counter{0};
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        path_ = fs::temp_directory_path() /
+                ("rad-gltf-" + std::string(info->name()) + "-" + std::to_string(::getpid()) + "-" +
+                 std::to_string(counter++));
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    fs::path operator/(const std::string& name) const { return path_ / name; }
+
+  private:
+    fs::path path_;
+};
+
+std::string base64(const std::string& bytes) {
+    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    std::size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) |
+                           (static_cast<unsigned char>(bytes[i + 1]) << 8) |
+                           static_cast<unsigned char>(bytes[i + 2]);
+        for (int s = 18; s >= 0; s -= 6) out += table[(v >> s) & 63];
+    }
+    const std::size_t rest = bytes.size() - i;
+    if (rest > 0) {
+        unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
+        if (rest == 2) v |= static_cast<unsigned char>(bytes[i + 1]) << 8;
+        out += table[(v >> 18) & 63];
+        out += table[(v >> 12) & 63];
+        out += rest == 2 ? table[(v >> 6) & 63] : '=';
+        out += '=';
+    }
+    return out;
+}
+
+void writeFile(const fs::path& path, const std::string& bytes) {
+    std::ofstream f(path, std::ios::binary);
+    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    ASSERT_TRUE(f.good()) << path;
+}
+
+std::string joined(const std::vector<std::string>& items) {
+    std::string out;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        if (i > 0) out += ',';
+        out += items[i];
+    }
+    return out;
+}
+
+struct GltfBuilder {
+    std::string bin;
+    std::vector<std::string> bufferViews, accessors, meshes, nodes, materials, cameras, images,
+        textures;
+    std::vector<int> roots;
+    std::string extraTopLevel;  // e.g. "\"extensionsUsed\":[...]," (with trailing comma)
+
+    int addView(const std::string& bytes) {
+        while (bin.size() % 4 != 0) bin += '\0';
+        bufferViews.push_back("{\"buffer\":0,\"byteOffset\":" + std::to_string(bin.size()) +
+                              ",\"byteLength\":" + std::to_string(bytes.size()) + "}");
+        bin += bytes;
+        return static_cast<int>(bufferViews.size()) - 1;
+    }
+    int addAccessor(const std::string& json) {
+        accessors.push_back(json);
+        return static_cast<int>(accessors.size()) - 1;
+    }
+    int addPositions(const std::vector<glm::vec3>& p) {
+        std::string bytes(p.size() * 12, '\0');
+        std::memcpy(bytes.data(), p.data(), bytes.size());
+        const int view = addView(bytes);
+        return addAccessor("{\"bufferView\":" + std::to_string(view) +
+                           ",\"componentType\":5126,\"type\":\"VEC3\",\"count\":" +
+                           std::to_string(p.size()) + "}");
+    }
+    int addIndices(const std::vector<std::uint32_t>& idx, int componentType = 5125) {
+        const std::size_t size = componentType == 5121 ? 1 : componentType == 5123 ? 2 : 4;
+        std::string bytes;
+        for (std::uint32_t i : idx)
+            for (std::size_t b = 0; b < size; ++b)
+                bytes += static_cast<char>((i >> (8 * b)) & 0xff);
+        const int view = addView(bytes);
+        return addAccessor("{\"bufferView\":" + std::to_string(view) +
+                           ",\"componentType\":" + std::to_string(componentType) +
+                           ",\"type\":\"SCALAR\",\"count\":" + std::to_string(idx.size()) + "}");
+    }
+    // A mesh with one primitive; material < 0 leaves it out, mode < 0 too.
+    int addMesh(const std::string& name, int positions, int indices, int material, int mode = -1) {
+        std::string prim = "{\"attributes\":{\"POSITION\":" + std::to_string(positions) + "}";
+        if (indices >= 0) prim += ",\"indices\":" + std::to_string(indices);
+        if (material >= 0) prim += ",\"material\":" + std::to_string(material);
+        if (mode >= 0) prim += ",\"mode\":" + std::to_string(mode);
+        prim += "}";
+        meshes.push_back("{\"name\":\"" + name + "\",\"primitives\":[" + prim + "]}");
+        return static_cast<int>(meshes.size()) - 1;
+    }
+    int addMaterial(const std::string& json) {
+        materials.push_back(json);
+        return static_cast<int>(materials.size()) - 1;
+    }
+    int addGrey(const std::string& name, double rho = 0.5) {
+        const std::string r = std::to_string(rho);
+        return addMaterial("{\"name\":\"" + name +
+                           "\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[" + r + "," + r +
+                           "," + r + ",1]}}");
+    }
+    // Members after "{" of a node, e.g. "\"name\":\"A\",\"mesh\":0".
+    int addNode(const std::string& members, bool root = true) {
+        nodes.push_back("{" + members + "}");
+        const int index = static_cast<int>(nodes.size()) - 1;
+        if (root) roots.push_back(index);
+        return index;
+    }
+
+    std::string json(const std::string& bufferJson) const {
+        std::string rootList;
+        for (std::size_t i = 0; i < roots.size(); ++i) {
+            if (i > 0) rootList += ',';
+            rootList += std::to_string(roots[i]);
+        }
+        std::string s = "{\"asset\":{\"version\":\"2.0\"}," + extraTopLevel +
+                        "\"scene\":0,\"scenes\":[{\"nodes\":[" + rootList + "]}]," + "\"nodes\":[" +
+                        joined(nodes) + "]";
+        const auto section = [&](const char* name, const std::vector<std::string>& items) {
+            if (!items.empty()) s += std::string(",\"") + name + "\":[" + joined(items) + "]";
+        };
+        section("meshes", meshes);
+        section("materials", materials);
+        section("cameras", cameras);
+        section("images", images);
+        section("textures", textures);
+        section("accessors", accessors);
+        section("bufferViews", bufferViews);
+        if (!bin.empty()) s += ",\"buffers\":[" + bufferJson + "]";
+        return s + "}";
+    }
+    std::string embeddedBuffer() const {
+        return "{\"byteLength\":" + std::to_string(bin.size()) +
+               ",\"uri\":\"data:application/octet-stream;base64," + base64(bin) + "\"}";
+    }
+
+    fs::path writeEmbedded(const TempDir& dir, const std::string& name = "scene.gltf") const {
+        const fs::path path = dir / name;
+        writeFile(path, json(embeddedBuffer()));
+        return path;
+    }
+    fs::path writeExternal(const TempDir& dir, const std::string& name = "external.gltf") const {
+        const fs::path path = dir / name;
+        writeFile(dir / "external.bin", bin);
+        writeFile(path, json("{\"byteLength\":" + std::to_string(bin.size()) +
+                             ",\"uri\":\"external.bin\"}"));
+        return path;
+    }
+    fs::path writeGlb(const TempDir& dir, const std::string& name = "scene.glb") const {
+        std::string text = json("{\"byteLength\":" + std::to_string(bin.size()) + "}");
+        while (text.size() % 4 != 0) text += ' ';
+        std::string data = bin;
+        while (data.size() % 4 != 0) data += '\0';
+        std::string out;
+        const auto u32 = [&out](std::uint32_t v) {
+            for (int b = 0; b < 4; ++b) out += static_cast<char>((v >> (8 * b)) & 0xff);
+        };
+        out += "glTF";
+        u32(2);
+        u32(static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + data.size()));
+        u32(static_cast<std::uint32_t>(text.size()));
+        u32(0x4E4F534A);  // JSON
+        out += text;
+        u32(static_cast<std::uint32_t>(data.size()));
+        u32(0x004E4942);  // BIN
+        out += data;
+        const fs::path path = dir / name;
+        writeFile(path, out);
+        return path;
+    }
+};
+
+// A 2 x 3 rectangle in the z = 0 plane, facing +Z, as two triangles sharing
+// the diagonal 0-2.
+const std::vector<glm::vec3> kRect = {{0, 0, 0}, {2, 0, 0}, {2, 3, 0}, {0, 3, 0}};
+const std::vector<std::uint32_t> kRectIndices = {0, 1, 2, 0, 2, 3};
+
+int addRectMesh(GltfBuilder& g, const std::string& name, int material) {
+    return g.addMesh(name, g.addPositions(kRect), g.addIndices(kRectIndices), material);
+}
+
+// Unit cube centred at the origin, 24 vertices, outward counter-clockwise faces.
+void cubeGeometry(std::vector<glm::vec3>& pos, std::vector<std::uint32_t>& idx) {
+    for (int axis = 0; axis < 3; ++axis) {
+        for (int sign : {1, -1}) {
+            glm::vec3 n(0.0f), u(0.0f), v(0.0f);
+            n[axis] = static_cast<float>(sign);
+            u[(axis + 1) % 3] = 1.0f;
+            v[(axis + 2) % 3] = 1.0f;
+            if (sign < 0) std::swap(u, v);  // keeps cross(u, v) == n
+            const auto base = static_cast<std::uint32_t>(pos.size());
+            for (auto [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}})
+                pos.push_back(0.5f * (n + static_cast<float>(a) * u + static_cast<float>(b) * v));
+            for (std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) idx.push_back(base + k);
+        }
+    }
+}
+
+std::string path(const fs::path& p) { return p.string(); }
+
+// Runs loadGltf expecting a SceneError; returns its message.
+std::string importError(const fs::path& file) {
+    try {
+        loadGltf(file.string());
+    } catch (const SceneError& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "wrong exception type: " << e.what();
+        return {};
+    }
+    ADD_FAILURE() << "no SceneError for " << file;
+    return {};
+}
+
+// The one-line "<path>: <item>: <problem>" shape, naming the file and the item.
+void expectOneLineError(const std::string& message, const fs::path& file, const std::string& item) {
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.find('\r'), std::string::npos) << message;
+    EXPECT_EQ(message.rfind(file.string() + ": ", 0), 0u) << message;
+    EXPECT_NE(message.find(item), std::string::npos) << "missing '" << item << "' in: " << message;
+}
+
+bool hasVertex(const Scene& s, const glm::dvec3& p, double tol = 1e-9) {
+    for (const Polygon& poly : s.polygons)
+        for (int i = 0; i < poly.vertexCount; ++i)
+            if (glm::length(poly.vertices[i] - p) < tol) return true;
+    return false;
+}
+
+// ---------------------------------------------------------------------------
+
+TEST(GltfImport, QuadAsTwoTrianglesMergesToOneQuad) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Floor", g.addGrey("Grey"));
+    g.addNode("\"name\":\"Floor\",\"mesh\":0");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    ASSERT_EQ(s.polygons.size(), 1u);
+    const Polygon& p = s.polygons[0];
+    EXPECT_EQ(p.vertexCount, 4);
+    EXPECT_NEAR(p.area(), 6.0, 1e-12);
+    EXPECT_NEAR(glm::length(p.normal() - glm::dvec3(0, 0, 1)), 0.0, 1e-12);
+    for (const glm::vec3& v : kRect) EXPECT_TRUE(hasVertex(s, glm::dvec3(v)));
+    EXPECT_EQ(notes.mergedQuads, 1u);
+    ASSERT_EQ(s.objects.size(), 1u);
+    EXPECT_EQ(s.objects[0].name, "Floor");
+    EXPECT_EQ(s.objects[0].firstPolygon, 0u);
+    EXPECT_EQ(s.objects[0].polygonCount, 1u);
+    EXPECT_EQ(s.sourcePath, path(dir / "scene.gltf"));
+}
+
+TEST(GltfImport, SmallIndexTypesAndNonIndexedLoad) {
+    TempDir dir;
+    GltfBuilder g;
+    const int grey = g.addGrey("Grey");
+    g.addMesh("U8", g.addPositions(kRect), g.addIndices(kRectIndices, 5121), grey);
+    g.addMesh("U16", g.addPositions(kRect), g.addIndices(kRectIndices, 5123), grey);
+    std::vector<glm::vec3> soup;
+    for (std::uint32_t i : kRectIndices) soup.push_back(kRect[i]);
+    g.addMesh("Soup", g.addPositions(soup), -1, grey);
+    for (int m = 0; m < 3; ++m)
+        g.addNode("\"name\":\"n" + std::to_string(m) + "\",\"mesh\":" + std::to_string(m));
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    ASSERT_EQ(s.polygons.size(), 3u);
+    for (const Polygon& p : s.polygons) {
+        EXPECT_EQ(p.vertexCount, 4);
+        EXPECT_NEAR(p.area(), 6.0, 1e-12);
+    }
+    EXPECT_EQ(notes.mergedQuads, 3u);
+}
+
+TEST(GltfImport, NonPlanarPairDoesNotMerge) {
+    TempDir dir;
+    GltfBuilder g;
+    std::vector<glm::vec3> bent = kRect;
+    bent[3].z = 0.5f;
+    g.addMesh("Bent", g.addPositions(bent), g.addIndices(kRectIndices), g.addGrey("Grey"));
+    g.addNode("\"name\":\"Bent\",\"mesh\":0");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    ASSERT_EQ(s.polygons.size(), 2u);
+    EXPECT_EQ(s.polygons[0].vertexCount, 3);
+    EXPECT_EQ(s.polygons[1].vertexCount, 3);
+    EXPECT_EQ(notes.mergedQuads, 0u);
+}
+
+TEST(GltfImport, ConcavePairDoesNotMerge) {
+    TempDir dir;
+    GltfBuilder g;
+    // A dart: the union of (A,B,C) and (A,C,D) has a reflex corner at C.
+    const std::vector<glm::vec3> dart = {{0, 0, 0}, {2, 0, 0}, {0.5f, 0.5f, 0}, {0, 2, 0}};
+    g.addMesh("Dart", g.addPositions(dart), g.addIndices(kRectIndices), g.addGrey("Grey"));
+    g.addNode("\"name\":\"Dart\",\"mesh\":0");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    ASSERT_EQ(s.polygons.size(), 2u);
+    EXPECT_EQ(notes.mergedQuads, 0u);
+    EXPECT_NEAR(s.polygons[0].area() + s.polygons[1].area(), 1.0, 1e-6);
+}
+
+TEST(GltfImport, DifferentMaterialsDoNotMerge) {
+    TempDir dir;
+    GltfBuilder g;
+    const int pos = g.addPositions(kRect);
+    const int a = g.addGrey("A", 0.2);
+    const int b = g.addGrey("B", 0.7);
+    g.meshes.push_back(
+        "{\"name\":\"Two\",\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) +
+        "},\"indices\":" + std::to_string(g.addIndices({0, 1, 2})) + ",\"material\":" +
+        std::to_string(a) + "},{\"attributes\":{\"POSITION\":" + std::to_string(pos) +
+        "},\"indices\":" + std::to_string(g.addIndices({0, 2, 3})) +
+        ",\"material\":" + std::to_string(b) + "}]}");
+    g.addNode("\"name\":\"Two\",\"mesh\":0");
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)));
+    ASSERT_EQ(s.polygons.size(), 2u);
+    EXPECT_NE(s.polygons[0].material, s.polygons[1].material);
+    EXPECT_NEAR(s.materials[s.polygons[0].material].reflectance.x, 0.2, 1e-12);
+    EXPECT_NEAR(s.materials[s.polygons[1].material].reflectance.x, 0.7, 1e-12);
+}
+
+TEST(GltfImport, ParentChildTranslationRotationScale) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    const double h = std::sqrt(0.5);
+    // Child: scale 2, then 90 degrees about +Y, then up by 1; parent moves by +10 x.
+    const int child = g.addNode(
+        "\"name\":\"Child\",\"mesh\":0,\"translation\":[0,1,0],"
+        "\"rotation\":[0," +
+            std::to_string(h) + ",0," + std::to_string(h) + "],\"scale\":[2,2,2]",
+        false);
+    g.addNode("\"name\":\"Parent\",\"translation\":[10,0,0],\"children\":[" +
+              std::to_string(child) + "]");
+    // A matrix node (column-major): translate by (0, 0, 5).
+    g.addNode("\"name\":\"Matrix\",\"mesh\":0,\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1]");
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)));
+    ASSERT_EQ(s.objects.size(), 2u);
+    const auto childIndex = s.findObject("Child");
+    ASSERT_TRUE(childIndex.has_value());
+    EXPECT_FALSE(s.findObject("Parent").has_value()) << "a node without a mesh is no object";
+
+    // Local (x, y, 0) -> scale (2x, 2y, 0) -> rotate about Y: x -> -z -> (0, 2y, -2x)
+    // -> + (0, 1, 0) -> + (10, 0, 0).
+    const Aabb box = s.objectBounds(*childIndex);
+    EXPECT_NEAR(glm::length(box.lo - glm::dvec3(10, 1, -4)), 0.0, 1e-6);
+    EXPECT_NEAR(glm::length(box.hi - glm::dvec3(10, 7, 0)), 0.0, 1e-6);
+    EXPECT_TRUE(hasVertex(s, glm::dvec3(10, 1, -4), 1e-6));  // from local (2, 0, 0)
+    const Polygon& p = s.polygons[s.objects[*childIndex].firstPolygon];
+    EXPECT_NEAR(glm::length(p.normal() - glm::dvec3(1, 0, 0)), 0.0, 1e-6);
+    EXPECT_NEAR(p.area(), 24.0, 1e-5);
+
+    const glm::dmat4& m = s.objects[*childIndex].worldFromLocal;
+    const glm::dvec3 mapped(m * glm::dvec4(2, 0, 0, 1));
+    EXPECT_NEAR(glm::length(mapped - glm::dvec3(10, 1, -4)), 0.0, 1e-6);
+
+    const auto matrixIndex = s.findObject("Matrix");
+    ASSERT_TRUE(matrixIndex.has_value());
+    const Aabb mbox = s.objectBounds(*matrixIndex);
+    EXPECT_NEAR(glm::length(mbox.lo - glm::dvec3(0, 0, 5)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(mbox.hi - glm::dvec3(2, 3, 5)), 0.0, 1e-12);
+}
+
+TEST(GltfImport, NegativeScaleKeepsNormalsOutward) {
+    TempDir dir;
+    GltfBuilder g;
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint32_t> idx;
+    cubeGeometry(pos, idx);
+    g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), g.addGrey("Grey"));
+    g.addNode("\"name\":\"Plain\",\"mesh\":0");
+    g.addNode("\"name\":\"Mirrored\",\"mesh\":0,\"translation\":[5,0,0],\"scale\":[-1,2,1]");
+    // A mirror split between parent and child cancels out; a mirror on the
+    // parent alone does not.
+    const int c1 = g.addNode("\"name\":\"C1\",\"mesh\":0,\"scale\":[1,1,-1]", false);
+    g.addNode("\"name\":\"P1\",\"translation\":[0,5,0],\"scale\":[-1,1,1],\"children\":[" +
+              std::to_string(c1) + "]");
+    const int c2 = g.addNode("\"name\":\"C2\",\"mesh\":0", false);
+    g.addNode("\"name\":\"P2\",\"translation\":[0,-5,0],\"scale\":[1,-1,1],\"children\":[" +
+              std::to_string(c2) + "]");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    ASSERT_EQ(s.objects.size(), 4u);
+    EXPECT_EQ(notes.mergedQuads, 24u);
+    for (std::uint32_t o = 0; o < s.objects.size(); ++o) {
+        const Object& obj = s.objects[o];
+        const glm::dvec3 centre = s.objectBounds(o).center();
+        ASSERT_EQ(obj.polygonCount, 6u) << obj.name;
+        for (std::uint32_t i = obj.firstPolygon; i < obj.firstPolygon + obj.polygonCount; ++i) {
+            const Polygon& p = s.polygons[i];
+            EXPECT_EQ(p.object, o);
+            EXPECT_GT(glm::dot(p.normal(), p.centroid() - centre), 0.0)
+                << obj.name << " polygon " << i << " faces inward";
+        }
+    }
+}
+
+TEST(GltfImport, MaterialsFactorsEmissiveStrengthAndDefault) {
+    TempDir dir;
+    GltfBuilder g;
+    g.extraTopLevel = "\"extensionsUsed\":[\"KHR_materials_emissive_strength\"],";
+    const int red = g.addMaterial(
+        "{\"name\":\"Red\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.1,0.2,1]}}");
+    const int lamp = g.addMaterial(
+        "{\"name\":\"Lamp\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.1,0.1,1]},"
+        "\"emissiveFactor\":[1,0.5,0.25],"
+        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4}}}");
+    const int glow = g.addMaterial(
+        "{\"name\":\"Glow\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},"
+        "\"emissiveFactor\":[0.5,0.5,0.5]}");
+    const int pos = g.addPositions(kRect);
+    const int idx = g.addIndices(kRectIndices);
+    g.addMesh("R", pos, idx, red);
+    g.addMesh("L", pos, idx, lamp);
+    g.addMesh("G", pos, idx, glow);
+    g.addMesh("D", pos, idx, -1);
+    for (int m = 0; m < 4; ++m) g.addNode("\"mesh\":" + std::to_string(m));
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)));
+    ASSERT_EQ(s.polygons.size(), 4u);
+    const auto materialOf = [&](std::size_t polygon) {
+        return s.materials[s.polygons[polygon].material];
+    };
+    EXPECT_EQ(materialOf(0).name, "Red");
+    EXPECT_NEAR(glm::length(materialOf(0).reflectance - glm::dvec3(0.8, 0.1, 0.2)), 0.0, 1e-12);
+    EXPECT_EQ(materialOf(0).emission, glm::dvec3(0.0));
+    EXPECT_EQ(materialOf(1).name, "Lamp");
+    EXPECT_NEAR(glm::length(materialOf(1).emission - glm::dvec3(4, 2, 1)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(materialOf(2).emission - glm::dvec3(0.5)), 0.0, 1e-12);
+    EXPECT_EQ(materialOf(3).name, "default");
+    EXPECT_EQ(materialOf(3).reflectance, glm::dvec3(0.5));
+    EXPECT_EQ(materialOf(3).emission, glm::dvec3(0.0));
+    EXPECT_TRUE(s.hasEmitter());
+    // Unnamed mesh nodes are named after their index.
+    EXPECT_EQ(s.objects[0].name, "node0");
+    EXPECT_EQ(s.objects[3].name, "node3");
+}
+
+// --- A tiny PNG writer (stored deflate blocks) for the texture test. ---
+
+std::uint32_t crc32(const std::string& bytes) {
+    std::uint32_t c = 0xffffffffu;
+    for (char ch : bytes) {
+        c ^= static_cast<unsigned char>(ch);
+        for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xffffffffu;
+}
+
+std::string bigEndian(std::uint32_t v) {
+    return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+            static_cast<char>(v)};
+}
+
+std::string pngChunk(const std::string& type, const std::string& data) {
+    return bigEndian(static_cast<std::uint32_t>(data.size())) + type + data +
+           bigEndian(crc32(type + data));
+}
+
+// RGB8 image, rows top to bottom.
+std::string makePng(int width, int height, const std::vector<std::array<unsigned char, 3>>& rgb) {
+    std::string raw;
+    for (int y = 0; y < height; ++y) {
+        raw += '\0';  // filter: none
+        for (int x = 0; x < width; ++x)
+            for (unsigned char c : rgb[static_cast<std::size_t>(y * width + x)])
+                raw += static_cast<char>(c);
+    }
+    std::uint32_t a = 1, b = 0;
+    for (char ch : raw) {
+        a = (a + static_cast<unsigned char>(ch)) % 65521;
+        b = (b + a) % 65521;
+    }
+    const auto len = static_cast<std::uint16_t>(raw.size());
+    std::string z = "\x78\x01";
+    z += '\x01';  // final stored block
+    z += static_cast<char>(len & 0xff);
+    z += static_cast<char>(len >> 8);
+    z += static_cast<char>(~len & 0xff);
+    z += static_cast<char>((~len >> 8) & 0xff);
+    z += raw + bigEndian((b << 16) | a);
+    std::string ihdr = bigEndian(static_cast<std::uint32_t>(width)) +
+                       bigEndian(static_cast<std::uint32_t>(height));
+    ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8-bit RGB, no interlace
+    return std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", ihdr) + pngChunk("IDAT", z) +
+           pngChunk("IEND", "");
+}
+
+double srgbDecode(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+TEST(GltfImport, BaseColorTextureMeanIsTakenInLinearSpace) {
+    TempDir dir;
+    GltfBuilder g;
+    const std::string png = makePng(2, 1, {{255, 128, 0}, {0, 128, 64}});
+    g.images.push_back("{\"uri\":\"data:image/png;base64," + base64(png) + "\"}");
+    g.textures.push_back("{\"source\":0}");
+    const int mat = g.addMaterial(
+        "{\"name\":\"Tex\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.5,0.9,1],"
+        "\"baseColorTexture\":{\"index\":0}}}");
+    addRectMesh(g, "T", mat);
+    g.addNode("\"name\":\"T\",\"mesh\":0");
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)));
+    ASSERT_EQ(s.polygons.size(), 1u);
+    const glm::dvec3 rho = s.materials[s.polygons[0].material].reflectance;
+    // Decode each texel, then average: 255 and 0 average to 0.5, not to decode(0.5).
+    EXPECT_NEAR(rho.x, 0.8 * 0.5, 1e-9);
+    EXPECT_NEAR(rho.y, 0.5 * srgbDecode(128.0 / 255.0), 1e-9);
+    EXPECT_NEAR(rho.z, 0.9 * 0.5 * srgbDecode(64.0 / 255.0), 1e-9);
+}
+
+TEST(GltfImport, ExtrasDynamicFlag) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    g.addNode("\"name\":\"Mover\",\"mesh\":0,\"extras\":{\"dynamic\":true}");
+    g.addNode("\"name\":\"Still\",\"mesh\":0,\"extras\":{\"dynamic\":false}");
+    g.addNode("\"name\":\"Plain\",\"mesh\":0,\"extras\":{\"other\":1}");
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)));
+    ASSERT_EQ(s.objects.size(), 3u);
+    EXPECT_TRUE(s.objects[*s.findObject("Mover")].dynamic);
+    EXPECT_FALSE(s.objects[*s.findObject("Still")].dynamic);
+    EXPECT_FALSE(s.objects[*s.findObject("Plain")].dynamic);
+}
+
+TEST(GltfImport, RepeatedNamesGetSuffixes) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    for (int i = 0; i < 3; ++i) g.addNode("\"name\":\"Box\",\"mesh\":0");
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)));
+    ASSERT_EQ(s.objects.size(), 3u);
+    EXPECT_EQ(s.objects[0].name, "Box");
+    EXPECT_EQ(s.objects[1].name, "Box#2");
+    EXPECT_EQ(s.objects[2].name, "Box#3");
+    for (std::uint32_t o = 0; o < 3; ++o) {
+        EXPECT_EQ(s.objects[o].firstPolygon, o);
+        EXPECT_EQ(s.polygons[o].object, o);
+    }
+}
+
+TEST(GltfImport, FirstPerspectiveCameraIsParsed) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    g.cameras.push_back(
+        "{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"aspectRatio\":1.5,\"znear\":0."
+        "05}}");
+    g.cameras.push_back("{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.3,\"znear\":1}}");
+    const double h = std::sqrt(0.5);
+    const int eye = g.addNode("\"name\":\"Eye\",\"camera\":0,\"rotation\":[0," + std::to_string(h) +
+                                  ",0," + std::to_string(h) + "]",
+                              false);
+    g.addNode("\"name\":\"Rig\",\"translation\":[1,2,3],\"children\":[" + std::to_string(eye) +
+              "]");
+    g.addNode("\"name\":\"Other\",\"camera\":1");
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)));
+    ASSERT_TRUE(s.camera.has_value());
+    const Camera& c = *s.camera;
+    EXPECT_NEAR(glm::length(c.position - glm::dvec3(1, 2, 3)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(c.forward - glm::dvec3(-1, 0, 0)), 0.0, 1e-6);
+    EXPECT_NEAR(glm::length(c.up - glm::dvec3(0, 1, 0)), 0.0, 1e-6);
+    EXPECT_NEAR(c.yfov, 0.8, 1e-12);
+    ASSERT_TRUE(c.aspectRatio.has_value());
+    EXPECT_NEAR(*c.aspectRatio, 1.5, 1e-12);
+    EXPECT_NEAR(c.znear, 0.05, 1e-12);
+}
+
+TEST(GltfImport, NoCameraLeavesItEmpty) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    EXPECT_FALSE(loadGltf(path(g.writeEmbedded(dir))).camera.has_value());
+}
+
+TEST(GltfImport, GlbAndExternalBufferLoadTheSameScene) {
+    TempDir dir;
+    GltfBuilder g;
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint32_t> idx;
+    cubeGeometry(pos, idx);
+    g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx, 5123), g.addGrey("Grey"));
+    addRectMesh(g, "Rect", g.addGrey("Dark", 0.1));
+    g.addNode("\"name\":\"Cube\",\"mesh\":0,\"translation\":[1,2,3],\"extras\":{\"dynamic\":true}");
+    g.addNode("\"name\":\"Rect\",\"mesh\":1,\"scale\":[1,1,2]");
+    const Scene a = loadGltf(path(g.writeEmbedded(dir)));
+    const Scene b = loadGltf(path(g.writeGlb(dir)));
+    const Scene c = loadGltf(path(g.writeExternal(dir)));
+    ASSERT_EQ(a.polygons.size(), 7u);
+    for (const Scene* other : {&b, &c}) {
+        ASSERT_EQ(other->polygons.size(), a.polygons.size());
+        ASSERT_EQ(other->objects.size(), a.objects.size());
+        ASSERT_EQ(other->materials.size(), a.materials.size());
+        for (std::size_t i = 0; i < a.polygons.size(); ++i) {
+            EXPECT_EQ(other->polygons[i].vertices, a.polygons[i].vertices);
+            EXPECT_EQ(other->polygons[i].vertexCount, a.polygons[i].vertexCount);
+            EXPECT_EQ(other->polygons[i].material, a.polygons[i].material);
+        }
+        for (std::size_t o = 0; o < a.objects.size(); ++o) {
+            EXPECT_EQ(other->objects[o].name, a.objects[o].name);
+            EXPECT_EQ(other->objects[o].dynamic, a.objects[o].dynamic);
+        }
+        for (std::size_t m = 0; m < a.materials.size(); ++m)
+            EXPECT_EQ(other->materials[m].reflectance, a.materials[m].reflectance);
+    }
+    EXPECT_TRUE(a.objects[0].dynamic);
+}
+
+TEST(GltfImport, DegenerateTrianglesAreDroppedAndCounted) {
+    TempDir dir;
+    GltfBuilder g;
+    std::vector<glm::vec3> pos = kRect;
+    pos.push_back({1, 1, 0});
+    pos.push_back({1, 1, 0});  // a repeated vertex: zero area
+    pos.push_back({3, 3, 0});  // collinear with (1,1) and (2,2)... with (0,0): zero area
+    const std::vector<std::uint32_t> idx = {0, 1, 2, 0, 2, 3, 4, 5, 1, 0, 4, 6};
+    g.addMesh("M", g.addPositions(pos), g.addIndices(idx), g.addGrey("Grey"));
+    g.addNode("\"name\":\"M\",\"mesh\":0");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    EXPECT_EQ(notes.degenerateTriangles, 2u);
+    ASSERT_EQ(s.polygons.size(), 1u);
+    EXPECT_EQ(s.polygons[0].vertexCount, 4);
+    EXPECT_FALSE(notes.lines.empty());
+}
+
+TEST(GltfImport, UnsupportedThingsAreNotedNotFatal) {
+    TempDir dir;
+    GltfBuilder g;
+    g.extraTopLevel = "\"extensionsUsed\":[\"KHR_texture_transform\"],";
+    const int mat = g.addMaterial(
+        "{\"name\":\"Two\",\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,"
+        "0.5,0.5,1]}}");
+    addRectMesh(g, "Rect", mat);
+    g.cameras.push_back(
+        "{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":1,\"ymag\":1,\"zfar\":10,\"znear\":"
+        "0.1}}");
+    g.addNode("\"name\":\"Ortho\",\"camera\":0");
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    EXPECT_EQ(s.polygons.size(), 1u);
+    EXPECT_FALSE(s.camera.has_value());
+    const auto noted = [&](const std::string& word) {
+        for (const std::string& line : notes.lines)
+            if (line.find(word) != std::string::npos) return true;
+        return false;
+    };
+    EXPECT_TRUE(noted("KHR_texture_transform"));
+    EXPECT_TRUE(noted("doubleSided"));
+    EXPECT_TRUE(noted("orthographic"));
+}
+
+// --- Errors: one line, "<path>: <item>: <problem>". ---
+
+TEST(GltfImportErrors, MissingFile) {
+    TempDir dir;
+    const fs::path file = dir / "nope.gltf";
+    expectOneLineError(importError(file), file, "file");
+}
+
+TEST(GltfImportErrors, MalformedJson) {
+    TempDir dir;
+    const fs::path file = dir / "broken.gltf";
+    writeFile(file, "{\"asset\": {\"version\": \"2.0\"},\n \"nodes\": [ {\n");
+    expectOneLineError(importError(file), file, "glTF");
+}
+
+TEST(GltfImportErrors, AccessorPastEndOfBuffer) {
+    TempDir dir;
+    GltfBuilder g;
+    const int view = g.addView(std::string(36, '\0'));  // room for 3 positions only
+    g.addAccessor("{\"bufferView\":" + std::to_string(view) +
+                  ",\"componentType\":5126,\"type\":\"VEC3\",\"count\":6}");
+    g.addMesh("Short", 0, -1, g.addGrey("Grey"));
+    g.addNode("\"name\":\"Short\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    const std::string message = importError(file);
+    expectOneLineError(message, file, "mesh 'Short' primitive 0 POSITION accessor 0");
+}
+
+TEST(GltfImportErrors, AccessorOffsetAndStridePastEnd) {
+    TempDir dir;
+    GltfBuilder g;
+    g.bin = std::string(48, '\0');
+    // A strided view of 48 bytes: 3 elements at stride 16 fit, 4 do not.
+    g.bufferViews.push_back("{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48,\"byteStride\":16}");
+    g.addAccessor(
+        "{\"bufferView\":0,\"byteOffset\":4,\"componentType\":5126,\"type\":\"VEC3\",\"count\":3}");
+    g.addMesh("Strided", 0, -1, g.addGrey("Grey"));
+    g.addNode("\"name\":\"Strided\",\"mesh\":0");
+    // 4 + 2*16 + 12 = 48 fits exactly (the triangle is degenerate, all zeros).
+    expectOneLineError(importError(g.writeEmbedded(dir, "fits.gltf")), dir / "fits.gltf",
+                       "contains no polygons");
+    g.accessors[0] =
+        "{\"bufferView\":0,\"byteOffset\":8,\"componentType\":5126,\"type\":\"VEC3\",\"count\":3}";
+    const fs::path file = g.writeEmbedded(dir, "past.gltf");
+    expectOneLineError(importError(file), file, "accessor 0");
+}
+
+TEST(GltfImportErrors, BufferViewPastEndOfBuffer) {
+    TempDir dir;
+    GltfBuilder g;
+    g.bin = std::string(36, '\0');
+    g.bufferViews.push_back("{\"buffer\":0,\"byteOffset\":12,\"byteLength\":36}");
+    g.addAccessor("{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\",\"count\":3}");
+    g.addMesh("View", 0, -1, g.addGrey("Grey"));
+    g.addNode("\"name\":\"View\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    const std::string message = importError(file);
+    expectOneLineError(message, file, "mesh 'View' primitive 0");
+    EXPECT_NE(message.find("bufferView 0"), std::string::npos) << message;
+}
+
+TEST(GltfImportErrors, TruncatedExternalBuffer) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    const fs::path file = g.writeExternal(dir);
+    fs::resize_file(dir / "external.bin", g.bin.size() / 2);
+    expectOneLineError(importError(file), file, "glTF");
+}
+
+TEST(GltfImportErrors, IndexOutOfRange) {
+    TempDir dir;
+    GltfBuilder g;
+    g.addMesh("Bad", g.addPositions(kRect), g.addIndices({0, 1, 7}), g.addGrey("Grey"));
+    g.addNode("\"name\":\"Bad\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    expectOneLineError(importError(file), file, "mesh 'Bad' primitive 0");
+}
+
+TEST(GltfImportErrors, NonTriangleMode) {
+    TempDir dir;
+    GltfBuilder g;
+    g.addMesh("Chair", g.addPositions(kRect), g.addIndices({0, 1, 1, 2}), g.addGrey("Grey"), 1);
+    g.addNode("\"name\":\"Chair\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    const std::string message = importError(file);
+    expectOneLineError(message, file, "mesh 'Chair' primitive 0");
+    EXPECT_NE(message.find("LINES (1)"), std::string::npos) << message;
+    EXPECT_NE(message.find("TRIANGLES"), std::string::npos) << message;
+
+    GltfBuilder strip;
+    strip.addMesh("Strip", strip.addPositions(kRect), -1, strip.addGrey("Grey"), 5);
+    strip.addNode("\"name\":\"Strip\",\"mesh\":0");
+    const fs::path stripFile = strip.writeEmbedded(dir, "strip.gltf");
+    expectOneLineError(importError(stripFile), stripFile, "TRIANGLE_STRIP (5)");
+}
+
+TEST(GltfImportErrors, NanPosition) {
+    TempDir dir;
+    GltfBuilder g;
+    std::vector<glm::vec3> pos = kRect;
+    pos[2].y = std::numeric_limits<float>::quiet_NaN();
+    g.addMesh("Nan", g.addPositions(pos), g.addIndices(kRectIndices), g.addGrey("Grey"));
+    g.addNode("\"name\":\"Nan\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    const std::string message = importError(file);
+    expectOneLineError(message, file, "mesh 'Nan' primitive 0");
+    EXPECT_NE(message.find("NaN"), std::string::npos) << message;
+}
+
+TEST(GltfImportErrors, InfPosition) {
+    TempDir dir;
+    GltfBuilder g;
+    std::vector<glm::vec3> pos = kRect;
+    pos[0].x = std::numeric_limits<float>::infinity();
+    g.addMesh("Inf", g.addPositions(pos), g.addIndices(kRectIndices), g.addGrey("Grey"));
+    g.addNode("\"name\":\"Inf\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    expectOneLineError(importError(file), file, "mesh 'Inf' primitive 0");
+}
+
+TEST(GltfImportErrors, InfinityInJsonIsMalformed) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    // JSON has no infinity; a number that overflows a double is rejected by
+    // the reader, as malformed glTF.
+    g.addNode("\"name\":\"Far\",\"mesh\":0,\"translation\":[1e400,0,0]");
+    const fs::path file = g.writeEmbedded(dir);
+    const std::string message = importError(file);
+    expectOneLineError(message, file, "glTF");
+    EXPECT_NE(message.find("1e400"), std::string::npos) << message;
+}
+
+TEST(GltfImportErrors, TransformOverflowsAcrossParents) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    const int child =
+        g.addNode("\"name\":\"Huge\",\"mesh\":0,\"scale\":[1e300,1e300,1e300]", false);
+    g.addNode("\"name\":\"Big\",\"scale\":[1e300,1e300,1e300],\"children\":[" +
+              std::to_string(child) + "]");
+    const fs::path file = g.writeEmbedded(dir);
+    expectOneLineError(importError(file), file, "node 'Huge'");
+}
+
+TEST(GltfImportErrors, InfiniteFactor) {
+    TempDir dir;
+    GltfBuilder g;
+    const int mat = g.addMaterial(
+        "{\"name\":\"Hot\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.5,0.5,1]},"
+        "\"emissiveFactor\":[1e300,0,0],"
+        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":1e300}}}");
+    addRectMesh(g, "Rect", mat);
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    expectOneLineError(importError(file), file, "material 'Hot'");
+}
+
+TEST(GltfImportErrors, ReflectanceOutsideUnitInterval) {
+    TempDir dir;
+    for (const char* factor : {"[1,0.5,0.5,1]", "[0.5,-0.1,0.5,1]"}) {
+        GltfBuilder g;
+        const int mat =
+            g.addMaterial("{\"name\":\"White\",\"pbrMetallicRoughness\":{\"baseColorFactor\":" +
+                          std::string(factor) + "}}");
+        addRectMesh(g, "Rect", mat);
+        g.addNode("\"name\":\"Rect\",\"mesh\":0");
+        const fs::path file = g.writeEmbedded(dir);
+        const std::string message = importError(file);
+        expectOneLineError(message, file, "material 'White'");
+        EXPECT_NE(message.find("[0,1)"), std::string::npos) << message;
+    }
+    // No baseColorFactor means white (1,1,1): also not a valid reflectance.
+    GltfBuilder g;
+    const int mat = g.addMaterial("{}");
+    addRectMesh(g, "Rect", mat);
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir, "unnamed.gltf");
+    expectOneLineError(importError(file), file, "material 0");
+}
+
+TEST(GltfImportErrors, NegativeEmission) {
+    TempDir dir;
+    GltfBuilder g;
+    const int mat = g.addMaterial(
+        "{\"name\":\"Neg\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.5,0.5,1]},"
+        "\"emissiveFactor\":[1,1,1],"
+        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":-2}}}");
+    addRectMesh(g, "Rect", mat);
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    const std::string message = importError(file);
+    expectOneLineError(message, file, "material 'Neg'");
+    EXPECT_NE(message.find("negative"), std::string::npos) << message;
+}
+
+TEST(GltfImportErrors, EmptyScene) {
+    TempDir dir;
+    GltfBuilder g;
+    g.addNode("\"name\":\"Nothing\"");
+    const fs::path file = g.writeEmbedded(dir);
+    expectOneLineError(importError(file), file, "contains no polygons");
+
+    // Only degenerate triangles: nothing left either.
+    GltfBuilder d;
+    d.addMesh("Flat", d.addPositions({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}), -1, d.addGrey("Grey"));
+    d.addNode("\"name\":\"Flat\",\"mesh\":0");
+    const fs::path flat = d.writeEmbedded(dir, "flat.gltf");
+    expectOneLineError(importError(flat), flat, "contains no polygons");
+}
+
+TEST(GltfImportErrors, UnknownExtension) {
+    TempDir dir;
+    const fs::path file = dir / "scene.obj";
+    writeFile(file, "v 0 0 0\n");
+    expectOneLineError(importError(file), file, "file");
+}
+
+TEST(GltfImport, NoEmitterIsNotAnImportError) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)));
+    EXPECT_FALSE(s.hasEmitter());
+}
+
+}  // namespace
+}  // namespace rad

@@ -1,0 +1,33 @@
+#pragma once
+// Small scenes built in code for known-answer tests.
+
+#include <string>
+
+#include "scene/Scene.h"
+
+namespace rad::test {
+
+// Adds a material and returns its index.
+std::uint32_t addMaterial(Scene& scene, glm::dvec3 reflectance, glm::dvec3 emission, std::string name = "m");
+
+// Adds an object made of quads given as 4 corners each (counter-clockwise
+// seen from the front). Returns the object index.
+std::uint32_t addQuadObject(Scene& scene, const std::string& name, std::uint32_t material,
+                            const std::vector<std::array<glm::dvec3, 4>>& quads, bool dynamic = false);
+
+// An axis-aligned box [lo, hi] with its six faces pointing inwards, or
+// outwards for a solid block.
+std::vector<std::array<glm::dvec3, 4>> boxFaces(glm::dvec3 lo, glm::dvec3 hi, bool inward);
+
+// Unit square emitter (E = 1, rho = 0) 1 m above a unit square receiver of
+// reflectance rho, facing each other.
+Scene parallelSquares(double rho);
+// Unit square receiver on the floor [0,1]x[0,1] (y = 0, facing up) and a unit
+// square emitter in the plane x = 0 sharing the edge z in [0,1], facing +x.
+Scene perpendicularSquares(double rho);
+// Closed unit cube, all faces emitting E = 1 with reflectance rho, inwards.
+Scene closedBox(double rho);
+
+std::string sourcePath(const std::string& relative);
+
+}  // namespace rad::test
