@@ -1,0 +1,33 @@
+#pragma once
+// What every command that writes pictures shares: the output checks and
+// "render this mesh through the scene's camera into this file".
+
+#include <optional>
+#include <string>
+
+#include "cli/Args.h"
+#include "scene/Scene.h"
+#include "snapshot/MeshSnapshot.h"
+
+namespace rad::cli {
+
+struct ImageRequest {
+    std::string path;                // .png (sRGB) or .pfm (linear)
+    std::optional<ImageSize> size;   // default: 512 high, the camera's aspect
+    double exposure = 0.0;           // PNG only: times 2^EV
+};
+
+// Throws UsageError unless the path ends in .png or .pfm.
+void checkImagePath(const std::string& option, const std::string& path);
+// Throws std::runtime_error when the file exists and force is false: nothing
+// the user owns is overwritten without asking.
+void checkWritable(const std::string& path, bool force);
+// The image size a request resolves to for this scene.
+ImageSize imageSizeFor(const Scene& scene, const std::optional<ImageSize>& size);
+
+// Renders `mesh` through the scene camera (or an automatic view) with
+// lavapipe and writes the file atomically. Throws std::runtime_error, also
+// when the validation layer (RADIOSITY_VALIDATION=1) reported anything.
+void renderToFile(const Scene& scene, const MeshSnapshot& mesh, const ImageRequest& request);
+
+}  // namespace rad::cli

@@ -1,0 +1,80 @@
+#include "render/GpuResources.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include "render/VulkanContext.h"
+
+namespace rad {
+
+GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage)
+    : size_(size) {
+    VkDevice device = context.device();
+    auto info = vkStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
+    info.size = size;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    vkCheck(vkCreateBuffer(device, &info, nullptr, &buffer), "vkCreateBuffer");
+    buffer_ = UniqueBuffer(device, buffer);
+
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(device, buffer, &req);
+    auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex =
+        context.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                       VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    vkCheck(vkAllocateMemory(device, &alloc, nullptr, &memory), "vkAllocateMemory");
+    memory_ = UniqueMemory(device, memory);
+    vkCheck(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
+    vkCheck(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+}
+
+void GpuBuffer::write(const void* data, std::size_t bytes) {
+    if (bytes > size_) throw std::runtime_error("GpuBuffer::write: data larger than the buffer");
+    if (bytes > 0) std::memcpy(mapped_, data, bytes);
+}
+
+GpuImage::GpuImage(const VulkanContext& context, std::uint32_t width, std::uint32_t height,
+                   VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect)
+    : format_(format) {
+    VkDevice device = context.device();
+    auto info = vkStruct<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = format;
+    info.extent = {width, height, 1};
+    info.mipLevels = 1;
+    info.arrayLayers = 1;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImage image = VK_NULL_HANDLE;
+    vkCheck(vkCreateImage(device, &info, nullptr, &image), "vkCreateImage");
+    image_ = UniqueImage(device, image);
+
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(device, image, &req);
+    auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex =
+        context.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    vkCheck(vkAllocateMemory(device, &alloc, nullptr, &memory), "vkAllocateMemory");
+    memory_ = UniqueMemory(device, memory);
+    vkCheck(vkBindImageMemory(device, image, memory, 0), "vkBindImageMemory");
+
+    auto viewInfo = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
+    viewInfo.image = image;
+    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = format;
+    viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    vkCheck(vkCreateImageView(device, &viewInfo, nullptr, &view), "vkCreateImageView");
+    view_ = UniqueImageView(device, view);
+}
+
+}  // namespace rad

@@ -1,0 +1,55 @@
+#pragma once
+// Buffers and images with their memory, owned together. Move-only; the
+// VulkanContext they were made from must outlive them.
+
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+#include <cstdint>
+
+#include "render/VkCheck.h"
+
+namespace rad {
+
+class VulkanContext;
+
+// A buffer in host-visible, coherent memory, mapped for its whole life. Mesh
+// data is small next to the cost of a solve, and lavapipe's memory is all
+// host memory anyway, so staging to device-local memory is not worth it here.
+class GpuBuffer {
+  public:
+    GpuBuffer() = default;
+    GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage);
+
+    VkBuffer buffer() const { return buffer_.get(); }
+    VkDeviceSize size() const { return size_; }
+    void* mapped() const { return mapped_; }
+    // Copies bytes to the start of the buffer (size must fit).
+    void write(const void* data, std::size_t bytes);
+
+  private:
+    UniqueMemory memory_;
+    UniqueBuffer buffer_;
+    VkDeviceSize size_ = 0;
+    void* mapped_ = nullptr;  // unmapped implicitly by vkFreeMemory
+};
+
+// A 2D image in device-local memory with one view, for attachments.
+class GpuImage {
+  public:
+    GpuImage() = default;
+    GpuImage(const VulkanContext& context, std::uint32_t width, std::uint32_t height,
+             VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect);
+
+    VkImage image() const { return image_.get(); }
+    VkImageView view() const { return view_.get(); }
+    VkFormat format() const { return format_; }
+
+  private:
+    UniqueMemory memory_;
+    UniqueImage image_;
+    UniqueImageView view_;
+    VkFormat format_ = VK_FORMAT_UNDEFINED;
+};
+
+}  // namespace rad

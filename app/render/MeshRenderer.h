@@ -1,0 +1,76 @@
+#pragma once
+// Drawing a MeshSnapshot into any render pass with one colour and one depth
+// attachment: the offscreen renderer's, or later a swapchain's.
+//
+//   GpuMesh mesh(context, snapshot);                     // upload once per snapshot
+//   MeshRenderer renderer(context, renderPass);          // once per render pass
+//   ... vkCmdBeginRenderPass(cmd, ...);
+//   renderer.draw(cmd, mesh, viewProjection, extent);    // surfaces, then overlay lines
+//   ... vkCmdEndRenderPass(cmd);
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <glm/glm.hpp>
+
+#include "render/GpuResources.h"
+#include "render/VkCheck.h"
+
+namespace rad {
+
+class VulkanContext;
+struct MeshSnapshot;
+
+// Vertex layout shared by surfaces and lines (shaders/gouraud.vert).
+struct ColoredVertex {
+    glm::vec3 position;
+    glm::vec3 color;  // linear RGB
+};
+
+// The GPU copy of one MeshSnapshot. It must stay alive until the command
+// buffers that draw it have finished executing.
+class GpuMesh {
+  public:
+    GpuMesh(const VulkanContext& context, const MeshSnapshot& snapshot);
+
+    std::uint32_t indexCount() const { return indexCount_; }
+    std::uint32_t lineVertexCount() const { return lineVertexCount_; }
+    VkBuffer vertexBuffer() const { return vertices_.buffer(); }
+    VkBuffer indexBuffer() const { return indices_.buffer(); }
+    VkBuffer lineBuffer() const { return lines_.buffer(); }
+
+  private:
+    GpuBuffer vertices_;
+    GpuBuffer indices_;
+    GpuBuffer lines_;
+    std::uint32_t indexCount_ = 0;
+    std::uint32_t lineVertexCount_ = 0;
+};
+
+struct MeshDrawOptions {
+    bool surfaces = true;
+    bool overlays = true;    // the snapshot's line pairs, drawn over the surfaces
+    float lineWidth = 1.0f;  // clamped to the device's range; 1 without wideLines
+};
+
+class MeshRenderer {
+  public:
+    // renderPass: subpass 0 has one colour attachment and a depth attachment.
+    MeshRenderer(const VulkanContext& context, VkRenderPass renderPass);
+
+    // Records into cmd, inside the render pass. Sets viewport and scissor to
+    // the whole extent. viewProjection maps world to Vulkan clip space.
+    void draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& viewProjection,
+              VkExtent2D extent, const MeshDrawOptions& options = {}) const;
+
+  private:
+    UniquePipeline createPipeline(VkDevice device, VkRenderPass renderPass, bool lines) const;
+
+    UniquePipelineLayout layout_;
+    UniquePipeline surfacePipeline_;  // triangles, Gouraud, depth test and write, no culling
+    UniquePipeline linePipeline_;     // line list, no depth test: always on top
+    bool wideLines_ = false;
+    float lineWidthRange_[2] = {1.0f, 1.0f};
+};
+
+}  // namespace rad

@@ -1,0 +1,64 @@
+#pragma once
+// Renders MeshSnapshots into a float image in memory, without a window.
+//
+//   VulkanContext context;
+//   OffscreenRenderer renderer(context);
+//   Image image = renderer.render(snapshot, view.viewProjection(), 512, 512);
+//
+// Attachments (R32G32B32A32_SFLOAT colour, D32 depth) and the readback buffer
+// are kept between frames and only recreated when the size changes.
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <optional>
+
+#include "image/Image.h"
+#include "render/GpuResources.h"
+#include "render/MeshRenderer.h"
+#include "render/VkCheck.h"
+
+namespace rad {
+
+class VulkanContext;
+struct MeshSnapshot;
+
+class OffscreenRenderer {
+  public:
+    static constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+    static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+    // The context must outlive the renderer. Uses the context's queue; one
+    // renderer must not be used by two threads at once.
+    explicit OffscreenRenderer(const VulkanContext& context);
+
+    // Linear RGB, top row first, background 0. width and height >= 1, at most
+    // the device's maxImageDimension2D.
+    Image render(const MeshSnapshot& snapshot, const glm::mat4& viewProjection, int width,
+                 int height, const MeshDrawOptions& options = {});
+    Image render(const GpuMesh& mesh, const glm::mat4& viewProjection, int width, int height,
+                 const MeshDrawOptions& options = {});
+
+    VkRenderPass renderPass() const { return renderPass_.get(); }
+
+  private:
+    struct Target {
+        std::uint32_t width = 0;
+        std::uint32_t height = 0;
+        GpuImage color;
+        GpuImage depth;
+        UniqueFramebuffer framebuffer;
+        GpuBuffer readback;
+    };
+
+    void ensureTarget(std::uint32_t width, std::uint32_t height);
+
+    const VulkanContext& context_;
+    UniqueRenderPass renderPass_;
+    std::optional<MeshRenderer> meshRenderer_;
+    UniqueCommandPool commandPool_;  // own pool: recording is not tied to the context's pool
+    VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;  // freed with the pool
+    UniqueFence fence_;
+    std::optional<Target> target_;
+};
+
+}  // namespace rad

@@ -1,0 +1,220 @@
+// The offscreen renderer on synthetic meshes, with the validation layer on.
+// Positions are given directly in Vulkan clip space (identity viewProjection):
+// x -1..1 is left..right, y -1..1 is top..bottom, z 0..1 is near..far.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "image/Image.h"
+#include "render/OffscreenRenderer.h"
+#include "render/VulkanContext.h"
+#include "snapshot/MeshSnapshot.h"
+
+namespace rad {
+namespace {
+
+const glm::vec3 kRed(1, 0, 0), kGreen(0, 1, 0), kBlue(0, 0, 1), kYellow(1, 1, 0);
+const glm::mat4 kIdentity(1.0f);
+
+void addTriangle(MeshSnapshot& mesh, std::array<glm::vec3, 3> p, std::array<glm::vec3, 3> c) {
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    for (int i = 0; i < 3; ++i) {
+        mesh.positions.push_back(p[i]);
+        mesh.normals.emplace_back(0, 0, -1);
+        mesh.colors.push_back(c[i]);
+    }
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
+}
+
+// Axis-aligned rectangle at depth z, two triangles.
+void addRect(MeshSnapshot& mesh, float x0, float y0, float x1, float y1, float z, glm::vec3 color) {
+    addTriangle(mesh, {{{x0, y0, z}, {x1, y0, z}, {x1, y1, z}}}, {color, color, color});
+    addTriangle(mesh, {{{x0, y0, z}, {x1, y1, z}, {x0, y1, z}}}, {color, color, color});
+}
+
+// Clip-space position of a pixel centre.
+glm::vec2 pixelCenter(const Image& image, int x, int y) {
+    return {(x + 0.5f) / image.width * 2.0f - 1.0f, (y + 0.5f) / image.height * 2.0f - 1.0f};
+}
+
+// The pixel whose centre is nearest a clip-space point.
+std::array<int, 2> pixelAt(const Image& image, float x, float y) {
+    return {static_cast<int>((x + 1.0f) * 0.5f * image.width),
+            static_cast<int>((y + 1.0f) * 0.5f * image.height)};
+}
+
+void expectColor(const Image& image, int x, int y, glm::vec3 expected, float tolerance = 1e-5f) {
+    const float* p = image.pixel(x, y);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(p[c], expected[c], tolerance)
+            << "pixel (" << x << ", " << y << ") channel " << c;
+}
+
+class OffscreenRendererTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        VulkanContextOptions options;
+        options.validation = true;  // a missing layer is a failure here, not a skip
+        try {
+            context_ = std::make_unique<VulkanContext>(options);
+        } catch (const std::exception& e) {
+            FAIL() << "cannot create a Vulkan context with validation: " << e.what();
+        }
+        ASSERT_TRUE(context_->validationEnabled());
+        renderer_ = std::make_unique<OffscreenRenderer>(*context_);
+    }
+
+    void TearDown() override {
+        if (!context_) return;
+        // Checked after destruction: leaked objects are reported then.
+        const auto messages = context_->validationMessageCounter();
+        renderer_.reset();
+        context_.reset();
+        EXPECT_EQ(messages->load(), 0u) << "validation messages are on stderr";
+    }
+
+    std::unique_ptr<VulkanContext> context_;
+    std::unique_ptr<OffscreenRenderer> renderer_;
+};
+
+TEST_F(OffscreenRendererTest, RedTriangleLeftGreenTriangleRightOnBlack) {
+    MeshSnapshot mesh;
+    addTriangle(mesh, {{{-0.9f, 0.5f, 0.5f}, {-0.1f, 0.5f, 0.5f}, {-0.5f, -0.5f, 0.5f}}},
+                {kRed, kRed, kRed});
+    addTriangle(mesh, {{{0.1f, 0.5f, 0.5f}, {0.9f, 0.5f, 0.5f}, {0.5f, -0.5f, 0.5f}}},
+                {kGreen, kGreen, kGreen});
+    const Image image = renderer_->render(mesh, kIdentity, 64, 48);
+    ASSERT_EQ(image.width, 64);
+    ASSERT_EQ(image.height, 48);
+    ASSERT_EQ(image.rgb.size(), 64u * 48u * 3u);
+
+    const auto [lx, ly] = pixelAt(image, -0.5f, 0.2f);
+    expectColor(image, lx, ly, kRed);
+    const auto [rx, ry] = pixelAt(image, 0.5f, 0.2f);
+    expectColor(image, rx, ry, kGreen);
+    // Background: corners, the gap between the triangles, above and below.
+    for (auto [x, y] :
+         {std::array<int, 2>{0, 0}, {63, 0}, {0, 47}, {63, 47}, {32, 24}, {16, 2}, {48, 45}})
+        expectColor(image, x, y, glm::vec3(0), 0.0f);
+}
+
+TEST_F(OffscreenRendererTest, TopOfClipSpaceIsFirstRow) {
+    // A band across the top quarter: y = -1 is the first row of the image.
+    MeshSnapshot mesh;
+    addRect(mesh, -1.0f, -1.0f, 1.0f, -0.5f, 0.5f, kBlue);
+    const Image image = renderer_->render(mesh, kIdentity, 16, 16);
+    expectColor(image, 8, 0, kBlue);
+    expectColor(image, 8, 15, glm::vec3(0), 0.0f);
+}
+
+TEST_F(OffscreenRendererTest, NearQuadHidesFarQuadWhateverTheDrawOrder) {
+    for (bool nearFirst : {true, false}) {
+        MeshSnapshot mesh;
+        if (nearFirst) addRect(mesh, -0.5f, -0.5f, 0.5f, 0.5f, 0.2f, kRed);
+        addRect(mesh, -0.9f, -0.9f, 0.9f, 0.9f, 0.8f, kBlue);
+        if (!nearFirst) addRect(mesh, -0.5f, -0.5f, 0.5f, 0.5f, 0.2f, kRed);
+        const Image image = renderer_->render(mesh, kIdentity, 32, 32);
+        SCOPED_TRACE(nearFirst ? "near drawn first" : "far drawn first");
+        expectColor(image, 16, 16, kRed);  // the near quad where both cover
+        expectColor(image, 3, 16, kBlue);  // the far one where only it covers
+        expectColor(image, 0, 0, glm::vec3(0), 0.0f);
+    }
+}
+
+TEST_F(OffscreenRendererTest, GouraudInterpolatesVertexColours) {
+    const std::array<glm::vec3, 3> p{
+        {{-0.9f, 0.9f, 0.5f}, {0.9f, 0.9f, 0.5f}, {0.0f, -0.9f, 0.5f}}};
+    MeshSnapshot mesh;
+    addTriangle(mesh, p, {kRed, kGreen, kBlue});
+    const Image image = renderer_->render(mesh, kIdentity, 128, 128);
+
+    const glm::vec3 centroid = (p[0] + p[1] + p[2]) / 3.0f;
+    const auto [x, y] = pixelAt(image, centroid.x, centroid.y);
+    // Barycentric coordinates of the sampled pixel centre, which lies within
+    // half a pixel of the centroid.
+    const glm::vec2 s = pixelCenter(image, x, y);
+    const glm::vec2 a(p[0]), b(p[1]), c(p[2]);
+    const auto cross2 = [](glm::vec2 u, glm::vec2 v) { return u.x * v.y - u.y * v.x; };
+    const float area = cross2(b - a, c - a);
+    const float wb = cross2(s - a, c - a) / area;
+    const float wc = cross2(b - a, s - a) / area;
+    const glm::vec3 exact = (1.0f - wb - wc) * kRed + wb * kGreen + wc * kBlue;
+    expectColor(image, x, y, exact, 1e-3f);
+    // And, as the picture promises, one third of each at the centroid, within 1%.
+    expectColor(image, x, y, glm::vec3(1.0f / 3.0f), 0.01f);
+}
+
+TEST_F(OffscreenRendererTest, OverlayLinesAreDrawnOnTopOfSurfaces) {
+    MeshSnapshot mesh;
+    addRect(mesh, -0.9f, -0.9f, 0.9f, 0.9f, 0.1f, kBlue);  // nearer than the line
+    const Image probe = renderer_->render(mesh, kIdentity, 64, 64);
+    // A horizontal line through the centres of row 32, behind the quad.
+    const float y = pixelCenter(probe, 0, 32).y;
+    mesh.linePositions = {{-0.8f, y, 0.9f}, {0.8f, y, 0.9f}};
+    mesh.lineColors = {kYellow, kYellow};
+    const Image image = renderer_->render(mesh, kIdentity, 64, 64);
+    expectColor(image, 32, 32, kYellow);
+    expectColor(image, 32, 20, kBlue);
+
+    MeshDrawOptions noOverlays;
+    noOverlays.overlays = false;
+    expectColor(renderer_->render(mesh, kIdentity, 64, 64, noOverlays), 32, 32, kBlue);
+}
+
+TEST_F(OffscreenRendererTest, ReusedForFramesOfDifferentSizes) {
+    MeshSnapshot mesh;
+    addRect(mesh, -1.0f, -1.0f, 0.0f, 1.0f, 0.5f, kGreen);  // left half
+    for (auto [w, h] : {std::array<int, 2>{32, 16}, {7, 9}, {32, 16}, {1, 1}}) {
+        const Image image = renderer_->render(mesh, kIdentity, w, h);
+        ASSERT_EQ(image.width, w);
+        ASSERT_EQ(image.height, h);
+        if (w > 1) {
+            expectColor(image, 0, h / 2, kGreen);
+            expectColor(image, w - 1, h / 2, glm::vec3(0), 0.0f);
+        }
+    }
+    EXPECT_THROW(renderer_->render(mesh, kIdentity, 0, 16), std::runtime_error);
+}
+
+TEST_F(OffscreenRendererTest, EmptySnapshotGivesBlackImage) {
+    const Image image = renderer_->render(MeshSnapshot{}, kIdentity, 8, 8);
+    for (float v : image.rgb) ASSERT_EQ(v, 0.0f);
+}
+
+TEST(RenderVulkanContext, ValidationLayerCountsMessages) {
+    VulkanContextOptions options;
+    options.validation = true;
+    std::unique_ptr<VulkanContext> context;
+    try {
+        context = std::make_unique<VulkanContext>(options);
+    } catch (const std::exception& e) {
+        FAIL() << "cannot create a Vulkan context with validation: " << e.what();
+    }
+    ASSERT_EQ(context->validationMessageCount(), 0u);
+    // A zero-sized buffer is invalid usage: the layer must report it (on stderr).
+    auto info = vkStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
+    info.size = 0;
+    info.usage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    std::fprintf(stderr, "(the next validation error is expected)\n");
+    const VkResult result = vkCreateBuffer(context->device(), &info, nullptr, &buffer);
+    if (result == VK_SUCCESS) vkDestroyBuffer(context->device(), buffer, nullptr);
+    EXPECT_GT(context->validationMessageCount(), 0u);
+}
+
+TEST(RenderVkCheck, ErrorNamesTheCallAndTheResult) {
+    try {
+        vkCheck(VK_ERROR_DEVICE_LOST, "vkQueueSubmit");
+        FAIL() << "no exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_STREQ(e.what(), "vkQueueSubmit failed: VK_ERROR_DEVICE_LOST");
+    }
+    EXPECT_EQ(vkCheck(VK_INCOMPLETE, "vkEnumeratePhysicalDevices"), VK_INCOMPLETE);
+}
+
+}  // namespace
+}  // namespace rad

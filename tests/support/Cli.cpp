@@ -1,0 +1,52 @@
+#include "support/Cli.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+
+namespace rad::test {
+
+std::string shellQuote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+RunResult runCli(const std::string& arguments) {
+    const std::string command = "RADIOSITY_VALIDATION=1 " + shellQuote(RADIOSITY_CLI) + " " + arguments + " 2>&1";
+    RunResult result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return result;
+    std::array<char, 4096> buffer;
+    std::size_t n;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::filesystem::path freshTempDir(const std::string& name) {
+    const auto dir = std::filesystem::temp_directory_path() / ("radiosity-" + name + "-" + std::to_string(getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+double jsonNumber(const std::string& json, const std::string& key, std::size_t from) {
+    const std::size_t at = json.find("\"" + key + "\":", from);
+    if (at == std::string::npos) return NAN;
+    return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
+}
+
+}  // namespace rad::test
