@@ -31,13 +31,22 @@ std::string jsonEscape(const std::string& s) {
     return out;
 }
 
+void JsonWriter::newline() {
+    out_ += '\n';
+    out_.append(2 * first_.size(), ' ');
+}
+
 void JsonWriter::prefix(const std::string& key) {
     if (!first_.empty()) {
         if (!first_.back()) out_ += ",";
         first_.back() = false;
-        out_ += "\n" + std::string(2 * first_.size(), ' ');
+        newline();
     }
-    if (!key.empty()) out_ += "\"" + jsonEscape(key) + "\": ";
+    if (!key.empty()) {
+        out_ += '"';
+        out_ += jsonEscape(key);
+        out_ += "\": ";
+    }
 }
 
 JsonWriter& JsonWriter::beginObject(const std::string& key) {
@@ -50,7 +59,7 @@ JsonWriter& JsonWriter::beginObject(const std::string& key) {
 JsonWriter& JsonWriter::endObject() {
     const bool empty = first_.back();
     first_.pop_back();
-    if (!empty) out_ += "\n" + std::string(2 * first_.size(), ' ');
+    if (!empty) newline();
     out_ += "}";
     if (first_.empty()) out_ += "\n";
     return *this;
@@ -66,7 +75,7 @@ JsonWriter& JsonWriter::beginArray(const std::string& key) {
 JsonWriter& JsonWriter::endArray() {
     const bool empty = first_.back();
     first_.pop_back();
-    if (!empty) out_ += "\n" + std::string(2 * first_.size(), ' ');
+    if (!empty) newline();
     out_ += "]";
     return *this;
 }
@@ -97,7 +106,9 @@ JsonWriter& JsonWriter::value(const std::string& key, bool v) {
 
 JsonWriter& JsonWriter::value(const std::string& key, const std::string& v) {
     prefix(key);
-    out_ += "\"" + jsonEscape(v) + "\"";
+    out_ += '"';
+    out_ += jsonEscape(v);
+    out_ += '"';
     return *this;
 }
 

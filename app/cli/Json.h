@@ -27,6 +27,7 @@ public:
 
 private:
     void prefix(const std::string& key);
+    void newline();
     std::string out_;
     std::vector<bool> first_;  // per open container: no element written yet
 };

@@ -34,7 +34,7 @@ void collectLeaves(const Hierarchy& h, ElementId e, std::vector<ElementId>& out)
     for (ElementId c : h[e].children) collectLeaves(h, c, out);
 }
 
-void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh) {
+void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vector<double>& weights) {
     std::vector<ElementId> leaves;
     collectLeaves(h, top, leaves);
     int maxDepth = 0;
@@ -79,6 +79,7 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh) {
         mesh.positions.emplace_back(v.position);
         mesh.normals.push_back(normal);
         mesh.colors.emplace_back(value[p]);
+        weights.push_back(v.weight);
     }
     for (ElementId l : leaves) {
         const HElement& e = h[l];
@@ -88,14 +89,50 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh) {
     }
 }
 
+// Input polygons that meet edge to edge in one plane (a tiled wall) share
+// their vertices' values, so the tiling does not show as steps.
+void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vector<double>& weights) {
+    const Aabb box = scene.bounds();
+    const double cell = std::max(1e-300, 1e-6 * glm::length(box.extent()));
+    struct Key {
+        std::int64_t x, y, z, nx, ny, nz;
+        bool operator==(const Key&) const = default;
+    };
+    struct KeyHash {
+        std::size_t operator()(const Key& k) const {
+            std::size_t h = 0;
+            for (std::int64_t v : {k.x, k.y, k.z, k.nx, k.ny, k.nz}) h = h * 0x100000001B3ULL ^ std::hash<std::int64_t>()(v);
+            return h;
+        }
+    };
+    auto keyOf = [&](std::size_t i) {
+        const glm::dvec3 p = (glm::dvec3(mesh.positions[i]) - box.lo) / cell;
+        const glm::dvec3 n = glm::dvec3(mesh.normals[i]) * 1e3;
+        return Key{std::llround(p.x), std::llround(p.y), std::llround(p.z),
+                   std::llround(n.x), std::llround(n.y), std::llround(n.z)};
+    };
+    std::unordered_map<Key, std::pair<glm::dvec3, double>, KeyHash> sums;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        auto& [sum, w] = sums[keyOf(i)];
+        sum += weights[i] * glm::dvec3(mesh.colors[i]);
+        w += weights[i];
+    }
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        const auto& [sum, w] = sums[keyOf(i)];
+        if (w > 0.0) mesh.colors[i] = glm::vec3(sum / w);
+    }
+}
+
 }  // namespace
 
 MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy) {
     MeshSnapshot mesh;
+    std::vector<double> weights;  // per vertex: the leaf area around it
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
         const ElementId top = hierarchy.polygonElement(p);
-        if (top != kNone) addPolygon(hierarchy, top, mesh);
+        if (top != kNone) addPolygon(hierarchy, top, mesh, weights);
     }
+    smoothAcrossPolygons(scene, mesh, weights);
     return mesh;
 }
 
