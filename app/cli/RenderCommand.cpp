@@ -48,21 +48,19 @@ int runRender(const std::vector<std::string>& argv) {
     }
     requirePositionals(args, {"SCENE"});
     const std::string scenePath = args.positionals[0];
-    ImageRequest request;
-    if (!args.value("--image")) throw UsageError("render needs --image OUT.png|OUT.pfm");
-    request.path = *args.value("--image");
-    checkImagePath("--image", request.path);
-    if (args.value("--size")) request.size = parseSize("--size", *args.value("--size"));
-    if (args.value("--exposure"))
-        request.exposure = parseDouble("--exposure", *args.value("--exposure"));
-    checkWritable(request.path, args.has("--force"));
-
+    const std::optional<std::string> out = args.value("--image");
+    if (!out) throw UsageError("render needs --image OUT.png|OUT.pfm");
+    checkImagePath("--image", *out);
+    ImageRequest request{*out, std::nullopt, 0.0};
+    if (auto s = args.value("--size")) request.size = parseSize("--size", *s);
+    if (auto e = args.value("--exposure")) request.exposure = parseDouble("--exposure", *e);
+    checkWritable(*out, args.has("--force"));
     if (!std::filesystem::exists(scenePath)) throw std::runtime_error(scenePath + ": no such file");
     const Scene scene = loadGltf(scenePath);
 
     // Draw.
     renderToFile(scene, makePreviewSnapshot(scene), request);
-    std::printf("wrote %s\n", request.path.c_str());
+    std::printf("wrote %s\n", out->c_str());
     return kExitOk;
 }
 

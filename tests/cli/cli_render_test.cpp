@@ -24,6 +24,7 @@
 
 #include "image/Image.h"
 #include "scene/GltfImport.h"
+#include "support/Cli.h"
 
 namespace rad {
 namespace {
@@ -34,39 +35,13 @@ const std::string kSourceDir = RADIOSITY_SOURCE_DIR;
 const std::string kCornellBox = kSourceDir + "/scenes/cornell-box.gltf";
 const std::string kReference = kSourceDir + "/tests/data/cornell-box-preview.pfm";
 
-struct RunResult {
-    int exitCode = -1;
-    std::string output;  // stdout and stderr together
-};
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-RunResult runCli(const std::string& arguments) {
-    const std::string command =
-        "RADIOSITY_VALIDATION=1 " + quote(RADIOSITY_CLI) + " " + arguments + " 2>&1";
-    RunResult result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return result;
-    std::array<char, 4096> buffer;
-    std::size_t n;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-        result.output.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
-}
+using test::readFile;
+using test::RunResult;
+using test::runCli;
+const auto quote = test::shellQuote;
 
 std::size_t lineCount(const std::string& text) {
     return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-}
-
-std::string readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Width and height from the PNG signature and IHDR chunk.
