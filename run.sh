@@ -17,9 +17,8 @@ echo "No display (or no viewer yet): running the headless demo." >&2
 mkdir -p out
 cli=build/app/radiosity-cli
 scene=scenes/cornell-box.gltf
-$cli render "$scene" --image out/cornell-box-preview.png --size 512x512
-if $cli --help | grep -q '^  solve'; then
-  $cli solve "$scene" --image out/cornell-box.png --size 512x512 --report out/cornell-box-report.json
-fi
+# out/ belongs to this demo: its files are replaced on every run.
+$cli render "$scene" --image out/cornell-box-preview.png --size 512x512 --force
+$cli solve "$scene" --image out/cornell-box.png --size 512x512 --report out/cornell-box-report.json --force
 echo "Wrote:"
 ls -1 out/* | sed 's/^/  /'
