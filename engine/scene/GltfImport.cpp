@@ -124,7 +124,8 @@ std::optional<std::array<glm::dvec3, 4>> mergeToQuad(const WorldTriangle& a,
     if (a.material != b.material) return std::nullopt;
     const glm::dvec3 na = triangleNormal(a);
     const glm::dvec3 nb = triangleNormal(b);
-    if (glm::length(na - nb) > 1e-6) return std::nullopt;
+    // Positions come as float32: allow for their rounding (1e-4 rad, 0.006 degrees).
+    if (glm::length(na - nb) > 1e-4) return std::nullopt;
     for (int k = 0; k < 3; ++k) {
         const glm::dvec3& p = a.v[k];
         const glm::dvec3& q = a.v[(k + 1) % 3];
