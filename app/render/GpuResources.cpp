@@ -7,6 +7,21 @@
 
 namespace rad {
 
+namespace {
+
+// Memory of the given kind for a resource with these requirements.
+UniqueMemory allocateMemory(const VulkanContext& context, const VkMemoryRequirements& req,
+                            VkMemoryPropertyFlags properties) {
+    auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = context.findMemoryType(req.memoryTypeBits, properties);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    vkCheck(vkAllocateMemory(context.device(), &alloc, nullptr, &memory), "vkAllocateMemory");
+    return UniqueMemory(context.device(), memory);
+}
+
+}  // namespace
+
 GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage)
     : size_(size) {
     VkDevice device = context.device();
@@ -20,14 +35,9 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUs
 
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, buffer, &req);
-    auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex =
-        context.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                                       VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    vkCheck(vkAllocateMemory(device, &alloc, nullptr, &memory), "vkAllocateMemory");
-    memory_ = UniqueMemory(device, memory);
+    memory_ = allocateMemory(
+        context, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    VkDeviceMemory memory = memory_.get();
     vkCheck(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
     vkCheck(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
 }
@@ -58,14 +68,8 @@ GpuImage::GpuImage(const VulkanContext& context, std::uint32_t width, std::uint3
 
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device, image, &req);
-    auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex =
-        context.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    vkCheck(vkAllocateMemory(device, &alloc, nullptr, &memory), "vkAllocateMemory");
-    memory_ = UniqueMemory(device, memory);
-    vkCheck(vkBindImageMemory(device, image, memory, 0), "vkBindImageMemory");
+    memory_ = allocateMemory(context, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    vkCheck(vkBindImageMemory(device, image, memory_.get(), 0), "vkBindImageMemory");
 
     auto viewInfo = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
     viewInfo.image = image;

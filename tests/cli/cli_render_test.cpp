@@ -8,8 +8,6 @@
 // and commit the new file after looking at it.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -25,6 +23,7 @@
 #include "image/Image.h"
 #include "scene/GltfImport.h"
 #include "support/Cli.h"
+#include "support/TempDir.h"
 
 namespace rad {
 namespace {
@@ -71,19 +70,10 @@ float regionMean(const Image& image, int channel, double x0, double x1, double y
 
 class CliRender : public ::testing::Test {
   protected:
-    void SetUp() override {
-        std::string pattern = (fs::temp_directory_path() / "radiosity-cli-test-XXXXXX").string();
-        ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-        dir_ = pattern;
-        ASSERT_TRUE(fs::exists(kCornellBox)) << kCornellBox << " is missing";
-    }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(dir_, ignored);
-    }
+    void SetUp() override { ASSERT_TRUE(fs::exists(kCornellBox)) << kCornellBox << " is missing"; }
     std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
-    fs::path dir_;
+    test::TempDir dir_;
 };
 
 TEST_F(CliRender, CornellBoxPfmMatchesReference) {

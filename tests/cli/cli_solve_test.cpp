@@ -15,6 +15,7 @@
 
 #include "image/Image.h"
 #include "support/Cli.h"
+#include "support/TempDir.h"
 #include "support/TestScenes.h"
 
 namespace rad {
@@ -28,7 +29,7 @@ const std::string kCornell = test::sourcePath("scenes/cornell-box.gltf");
 const std::string kReference = test::sourcePath("tests/data/cornell-box-solved.pfm");
 
 TEST(CliSolve, CornellBoxReportImageAndExport) {
-    const auto dir = test::freshTempDir("solve");
+    const test::TempDir dir;
     const std::string report = (dir / "r.json").string(), pfm = (dir / "b.pfm").string(),
                       glb = (dir / "lit.glb").string();
     const auto r = runCli("solve " + shellQuote(kCornell) + " --report " + shellQuote(report) + " --image " +
@@ -89,7 +90,7 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
 }
 
 TEST(CliSolve, BadSettingsAndMissingFilesFailWithOneLine) {
-    const auto dir = test::freshTempDir("solve-bad");
+    const test::TempDir dir;
     auto r = runCli("solve " + shellQuote(kCornell) + " --epsilon -1");
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("--epsilon"), std::string::npos);

@@ -1,9 +1,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,31 +12,13 @@
 #include "scene/GltfExport.h"
 #include "scene/GltfImport.h"
 #include "scene/Scene.h"
+#include "support/TempDir.h"
 
 namespace rad {
 namespace {
 
 namespace fs = std::filesystem;
-
-class TempDir {
-  public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        path_ = fs::temp_directory_path() /
-                ("rad-gltf-export-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-  private:
-    fs::path path_;
-};
+using test::TempDir;
 
 // Two triangles of a unit square with colours above 1 (radiosity is not
 // clamped) and an odd vertex order, so a silent reordering would show.

@@ -1,8 +1,6 @@
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -13,37 +11,17 @@
 #include <vector>
 
 #include "scene/GltfImport.h"
+#include "support/TempDir.h"
 
 namespace rad {
 namespace {
 
 namespace fs = std::filesystem;
+using test::TempDir;
 
 // ---------------------------------------------------------------------------
-// Helpers: a temporary directory and a small glTF writer (JSON text plus one
-// binary buffer, written embedded, as .glb or with an external .bin).
-
-class TempDir {
-  public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() /
-                ("rad-gltf-" + std::string(info->name()) + "-" + std::to_string(::getpid()) + "-" +
-                 std::to_string(counter++));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-  private:
-    fs::path path_;
-};
+// Helpers: a small glTF writer (JSON text plus one binary buffer, written
+// embedded, as .glb or with an external .bin).
 
 std::string base64(const std::string& bytes) {
     static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";

@@ -1,7 +1,6 @@
 #include "support/Cli.h"
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -34,13 +33,6 @@ RunResult runCli(const std::string& arguments) {
 std::string readFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::filesystem::path freshTempDir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("radiosity-" + name + "-" + std::to_string(getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
 }
 
 double jsonNumber(const std::string& json, const std::string& key, std::size_t from) {

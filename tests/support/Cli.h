@@ -1,7 +1,6 @@
 #pragma once
 // Running radiosity-cli as a user would: a separate process, validation on.
 
-#include <filesystem>
 #include <string>
 
 namespace rad::test {
@@ -15,8 +14,6 @@ std::string shellQuote(const std::string& s);
 // Runs `radiosity-cli ARGUMENTS` with RADIOSITY_VALIDATION=1.
 RunResult runCli(const std::string& arguments);
 std::string readFile(const std::string& path);
-// A fresh empty directory under the system temporary directory.
-std::filesystem::path freshTempDir(const std::string& name);
 // The number after "key": in a JSON text (first occurrence), or NaN.
 double jsonNumber(const std::string& json, const std::string& key, std::size_t from = 0);
 
