@@ -45,7 +45,11 @@ Hierarchy::Hierarchy(const Scene& scene, double minArea)
     // Each object that may become dynamic sits in its own cluster right under the root.
     for (std::uint32_t o : dynamicObjects) top.push_back(buildObjectCluster(scene, o));
     if (!staticObjects.empty()) {
-        const ElementId s = buildCluster(scene, staticObjects);
+        std::vector<glm::dvec3> centers(scene.objects.size());
+        for (std::uint32_t o : staticObjects) centers[o] = scene.objectBounds(o).center();
+        const ElementId s = buildTree(
+            staticObjects, kNone, [&](std::uint32_t o) { return centers[o]; },
+            [&](std::uint32_t o) { return buildObjectCluster(scene, o); });
         // Avoid a chain of single-child clusters.
         if (dynamicObjects.empty()) {
             top = elements_[s].children;
@@ -73,20 +77,21 @@ ElementId Hierarchy::add(HElement e) {
     return static_cast<ElementId>(elements_.size() - 1);
 }
 
-ElementId Hierarchy::buildCluster(const Scene& scene, std::vector<std::uint32_t> objects) {
+template <class CenterOf, class MakeLeaf>
+ElementId Hierarchy::buildTree(std::vector<std::uint32_t> items, std::uint32_t object, const CenterOf& centerOf,
+                               const MakeLeaf& makeLeaf) {
     HElement cluster;
     cluster.kind = ElementKind::Cluster;
+    cluster.object = object;
     const ElementId id = add(cluster);
     std::vector<ElementId> children;
-    if (objects.size() <= kClusterFanout) {
-        for (std::uint32_t o : objects) children.push_back(buildObjectCluster(scene, o));
+    if (items.size() <= kClusterFanout) {
+        for (std::uint32_t i : items) children.push_back(makeLeaf(i));
     } else {
-        std::vector<Aabb> boxes(scene.objects.size());
-        for (std::uint32_t o : objects) boxes[o] = scene.objectBounds(o);
         std::vector<std::uint32_t> left, right;
-        splitMedian(objects, [&](std::uint32_t o) { return boxes[o].center(); }, left, right);
-        children.push_back(buildCluster(scene, std::move(left)));
-        children.push_back(buildCluster(scene, std::move(right)));
+        splitMedian(items, centerOf, left, right);
+        children.push_back(buildTree(std::move(left), object, centerOf, makeLeaf));
+        children.push_back(buildTree(std::move(right), object, centerOf, makeLeaf));
     }
     for (ElementId c : children) elements_[c].parent = id;
     elements_[id].children = std::move(children);
@@ -98,28 +103,10 @@ ElementId Hierarchy::buildObjectCluster(const Scene& scene, std::uint32_t object
     const Object& o = scene.objects[object];
     std::vector<std::uint32_t> polygons(o.polygonCount);
     std::iota(polygons.begin(), polygons.end(), o.firstPolygon);
-    const ElementId id = buildPolygonCluster(scene, std::move(polygons), object);
+    const ElementId id = buildTree(
+        std::move(polygons), object, [&](std::uint32_t p) { return scene.polygons[p].centroid(); },
+        [&](std::uint32_t p) { return makeSurface(scene, p); });
     objectClusters_[object] = id;
-    return id;
-}
-
-ElementId Hierarchy::buildPolygonCluster(const Scene& scene, std::vector<std::uint32_t> polygons, std::uint32_t object) {
-    HElement cluster;
-    cluster.kind = ElementKind::Cluster;
-    cluster.object = object;
-    const ElementId id = add(cluster);
-    std::vector<ElementId> children;
-    if (polygons.size() <= kClusterFanout) {
-        for (std::uint32_t p : polygons) children.push_back(makeSurface(scene, p));
-    } else {
-        std::vector<std::uint32_t> left, right;
-        splitMedian(polygons, [&](std::uint32_t p) { return scene.polygons[p].centroid(); }, left, right);
-        children.push_back(buildPolygonCluster(scene, std::move(left), object));
-        children.push_back(buildPolygonCluster(scene, std::move(right), object));
-    }
-    for (ElementId c : children) elements_[c].parent = id;
-    elements_[id].children = std::move(children);
-    finishCluster(id);
     return id;
 }
 

@@ -45,9 +45,12 @@ public:
 
 private:
     ElementId add(HElement e);
-    ElementId buildCluster(const Scene& scene, std::vector<std::uint32_t> objects);
+    // A median-split tree of clusters over `items` (objects or polygons), at
+    // most a few leaves per cluster; makeLeaf turns an item into an element.
+    template <class CenterOf, class MakeLeaf>
+    ElementId buildTree(std::vector<std::uint32_t> items, std::uint32_t object, const CenterOf& centerOf,
+                        const MakeLeaf& makeLeaf);
     ElementId buildObjectCluster(const Scene& scene, std::uint32_t object);
-    ElementId buildPolygonCluster(const Scene& scene, std::vector<std::uint32_t> polygons, std::uint32_t object);
     ElementId makeSurface(const Scene& scene, std::uint32_t polygon);
     std::uint64_t assignRanges(ElementId id, std::uint64_t first);
     void finishCluster(ElementId id);
