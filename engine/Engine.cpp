@@ -1,6 +1,8 @@
 #include "Engine.h"
 
 #include <chrono>
+#include <cmath>
+#include <stdexcept>
 #include <sstream>
 
 #include "geometry/RayCaster.h"
@@ -44,7 +46,26 @@ struct Engine::State {
           hierarchy(scene, settings.minArea > 0.0 ? settings.minArea : 2e-5 * totalArea(scene)),
           refiner(hierarchy, links, rays,
                   RefineSettings{settings.epsilon, emittedPower(scene), settings.samplesPerSide, settings.maxLinks}),
-          solver(hierarchy, links) {}
+          solver(hierarchy, links),
+          updater(hierarchy, links, refiner, solver, emittedPower(scene) / totalArea(scene)) {}
+
+    // Splits the polygons into the two visibility layers around `object`.
+    void chooseDynamic(std::optional<std::uint32_t> object) {
+        dynamic = object;
+        std::vector<std::uint32_t> staticPolygons, dynamicPolygons;
+        for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
+            (object && scene.polygons[p].object == *object ? dynamicPolygons : staticPolygons).push_back(p);
+        rays.setLayer(Layer::Static, scene, staticPolygons);
+        rays.setLayer(Layer::Dynamic, scene, dynamicPolygons);
+        refiner.setDynamicRange(object ? std::optional(hierarchy[hierarchy.objectCluster(*object)].range) : std::nullopt);
+        if (object) {
+            const Object& o = scene.objects[*object];
+            original.assign(scene.polygons.begin() + o.firstPolygon,
+                            scene.polygons.begin() + o.firstPolygon + o.polygonCount);
+            originalWorld = o.worldFromLocal;
+        }
+        dynamicPolygonIds = std::move(dynamicPolygons);
+    }
 
     Scene scene;
     EngineSettings settings;
@@ -53,7 +74,14 @@ struct Engine::State {
     RayCaster rays;
     Refiner refiner;
     Solver solver;
+    LineSpaceUpdate updater;
     SolveStats stats;
+    bool solved = false;
+
+    std::optional<std::uint32_t> dynamic;
+    std::vector<std::uint32_t> dynamicPolygonIds;
+    std::vector<Polygon> original;  // the dynamic object's polygons as chosen
+    glm::dmat4 originalWorld{1.0};
 };
 
 Engine::Engine(Scene scene, const EngineSettings& settings) {
@@ -61,18 +89,13 @@ Engine::Engine(Scene scene, const EngineSettings& settings) {
     state_ = std::make_unique<State>(std::move(scene), settings);
     State& s = *state_;
     // The dynamic object is the first one marked dynamic; the others are static.
-    std::vector<std::uint32_t> staticPolygons, dynamicPolygons;
     std::optional<std::uint32_t> dynamicObject;
     for (std::uint32_t o = 0; o < s.scene.objects.size(); ++o)
         if (s.scene.objects[o].dynamic && s.scene.objects[o].polygonCount > 0) {
             dynamicObject = o;
             break;
         }
-    for (std::uint32_t p = 0; p < s.scene.polygons.size(); ++p)
-        (dynamicObject && s.scene.polygons[p].object == *dynamicObject ? dynamicPolygons : staticPolygons).push_back(p);
-    s.rays.setLayer(Layer::Static, s.scene, staticPolygons);
-    s.rays.setLayer(Layer::Dynamic, s.scene, dynamicPolygons);
-    if (dynamicObject) s.refiner.setDynamicRange(s.hierarchy[s.hierarchy.objectCluster(*dynamicObject)].range);
+    s.chooseDynamic(dynamicObject);
     s.stats.polygons = s.scene.polygons.size();
     s.stats.minArea = s.hierarchy.minArea();
     s.stats.hierarchySeconds = secondsSince(start);
@@ -123,8 +146,62 @@ const SolveStats& Engine::solve(const Progress& progress) {
     }
     st.memory = {s.hierarchy.memoryBytes(), s.links.memoryBytes()};
     st.energy = s.solver.energy();
+    // The full sweeps left every receiver's irradiance consistent with the
+    // sources' gathered B: the in-place updates start from here.
+    s.refiner.takeDirty();
+    s.solved = true;
     return st;
 }
+
+std::optional<std::uint32_t> Engine::dynamicObject() const { return state_->dynamic; }
+
+FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSettings& settings) {
+    State& s = *state_;
+    const std::optional<std::uint32_t> object = s.scene.findObject(name);
+    if (!object) throw std::invalid_argument("no object named '" + name + "' in " + s.scene.sourcePath);
+    if (!s.scene.objects[*object].dynamic)
+        throw std::invalid_argument("object '" + name + "' is not marked dynamic (extras.dynamic) in " +
+                                    s.scene.sourcePath + "; only those can be moved");
+    if (s.dynamic == object) return {};
+    const Aabb before = s.dynamic ? s.scene.objectBounds(*s.dynamic) : Aabb{};
+    s.chooseDynamic(object);
+    if (!s.solved) return {};
+    const ElementId cluster = s.hierarchy.objectCluster(*object);
+    return s.updater.update(before, s.scene.objectBounds(*object), s.hierarchy[cluster].range, settings, true);
+}
+
+FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const UpdateSettings& settings) {
+    State& s = *state_;
+    if (!s.dynamic) throw std::invalid_argument(s.scene.sourcePath + ": no dynamic object to move");
+    if (!s.solved) throw std::logic_error("moveDynamicObject before solve()");
+    const glm::dmat3 r(worldFromLocal);
+    const glm::dmat3 rtr = glm::transpose(r) * r;
+    bool rigid = std::abs(glm::determinant(r) - 1.0) < 1e-6 && worldFromLocal[0][3] == 0.0 &&
+                 worldFromLocal[1][3] == 0.0 && worldFromLocal[2][3] == 0.0 && worldFromLocal[3][3] == 1.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) rigid = rigid && std::abs(rtr[i][j] - (i == j ? 1.0 : 0.0)) < 1e-6;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]);
+    if (!rigid) throw std::invalid_argument("the transform of '" + s.scene.objects[*s.dynamic].name +
+                                            "' is not a finite rigid motion (rotation and translation)");
+
+    const Aabb before = s.scene.objectBounds(*s.dynamic);
+    Object& o = s.scene.objects[*s.dynamic];
+    const glm::dmat4 delta = worldFromLocal * glm::inverse(s.originalWorld);
+    for (std::uint32_t i = 0; i < o.polygonCount; ++i) {
+        Polygon& p = s.scene.polygons[o.firstPolygon + i];
+        for (int k = 0; k < p.vertexCount; ++k) p.vertices[k] = glm::dvec3(delta * glm::dvec4(s.original[i].vertices[k], 1.0));
+    }
+    o.worldFromLocal = worldFromLocal;
+    const ElementId cluster = s.hierarchy.objectCluster(*s.dynamic);
+    s.hierarchy.updateGeometry(cluster);
+    s.hierarchy.refreshAncestors(cluster);
+    s.refiner.refreshClusterSamples(cluster);
+    s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
+    return s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
+}
+
+RadiositySamples Engine::samples() const { return sampleRadiosity(state_->scene, state_->hierarchy); }
 
 MeshSnapshot Engine::snapshot() const { return makeRadiositySnapshot(state_->scene, state_->hierarchy); }
 

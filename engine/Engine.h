@@ -10,7 +10,9 @@
 
 #include "scene/Scene.h"
 #include "snapshot/MeshSnapshot.h"
+#include "snapshot/Sampling.h"
 #include "solve/Solver.h"
+#include "update/LineSpaceUpdate.h"
 
 namespace rad {
 
@@ -69,7 +71,22 @@ public:
     // computed using all links").
     const SolveStats& solve(const Progress& progress = {});
 
+    // The dynamic object: the first object marked dynamic in the scene, until
+    // another candidate is chosen.
+    std::optional<std::uint32_t> dynamicObject() const;
+    // Chooses another dynamic-object candidate (an object marked dynamic in
+    // the scene): the visibility of the links around the old and the new one
+    // is split again by a line-space traversal, not by a re-solve. Throws
+    // std::invalid_argument naming the object when it is not a candidate.
+    FrameStats setDynamicObject(const std::string& name, const UpdateSettings& settings = {});
+    // Moves the dynamic object to a rigid world transform (its transform in the
+    // file is the starting one) and updates the solution incrementally.
+    // Throws std::invalid_argument for a non-rigid or non-finite transform.
+    FrameStats moveDynamicObject(const glm::dmat4& worldFromLocal, const UpdateSettings& settings = {});
+
     MeshSnapshot snapshot() const;
+    // Leaf radiosity at fixed points of every input polygon (see Sampling.h).
+    RadiositySamples samples() const;
     std::vector<ObjectRadiosity> objectRadiosity() const;
     const Scene& scene() const;
     const SolveStats& stats() const;

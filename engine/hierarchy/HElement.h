@@ -45,11 +45,18 @@ struct HElement {
     // Solution state (double precision: the in-place gather adds differences).
     glm::dvec3 irradiance{0.0};  // gathered on this element's own active links
     glm::dvec3 radiosity{0.0};   // B; for clusters the area-weighted mean below
-    bool changed = false;
+    // The B that the receivers of this element's links currently hold in
+    // their irradiance: the in-place gather adds F times the difference.
+    glm::dvec3 gathered{0.0};
+    bool changed = false;  // on the path to a modified element (sec. 4.1, Fig. 7)
+    bool dirty = false;    // own irradiance changed: the whole subtree is pushed again
 
     // Links arriving here (this element is the receiver).
     std::vector<LinkId> links;   // active
     std::vector<LinkId> plinks;  // passive: refined, kept as line-space parents
+    // Active links leaving this element (it is their source), for further
+    // bounces (sec. 5.3.2) and to know what still depends on it.
+    std::vector<LinkId> outLinks;
 
     bool isLeaf() const { return children.empty(); }
     bool isSurface() const { return kind == ElementKind::Surface; }

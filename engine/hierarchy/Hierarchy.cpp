@@ -17,6 +17,18 @@ glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv) {
     return glm::mix(a, b, uv.y);
 }
 
+// Area-weighted centroid of a convex patch (fan from its first vertex).
+glm::dvec3 patchCentroid(const PatchGeometry& patch) {
+    glm::dvec3 c(0.0);
+    double total = 0.0;
+    for (int i = 1; i + 1 < patch.n; ++i) {
+        const double a = glm::length(glm::cross(patch.v[i] - patch.v[0], patch.v[i + 1] - patch.v[0]));
+        c += a * (patch.v[0] + patch.v[i] + patch.v[i + 1]) / 3.0;
+        total += a;
+    }
+    return total > 0.0 ? c / total : patch.v[0];
+}
+
 template <class CenterOf>
 void splitMedian(std::vector<std::uint32_t>& items, CenterOf centerOf, std::vector<std::uint32_t>& left,
                  std::vector<std::uint32_t>& right) {
@@ -122,7 +134,7 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
                                  : std::array<glm::dvec2, 4>{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)};
     e.normal = p.normal();
     e.area = p.area();
-    e.center = p.centroid();
+    e.center = patchCentroid(e.patch);
     for (int i = 0; i < p.vertexCount; ++i) e.box.extend(p.vertices[i]);
     const Material& m = scene.materials[p.material];
     e.reflectance = m.reflectance;
@@ -196,6 +208,7 @@ void Hierarchy::subdivide(ElementId id) {
         c.reflectance = parent.reflectance;
         c.emission = parent.emission;
         c.radiosity = parent.radiosity;
+        c.gathered = parent.gathered;
         kids.push_back(add(std::move(c)));
     }
     elements_[id].children = kids;
@@ -222,23 +235,22 @@ void Hierarchy::updateGeometry(ElementId id) {
         e.normal = p.normal();
         e.area = polygonArea(e.patch);
         e.box = Aabb{};
-        glm::dvec3 sum(0.0);
-        for (int i = 0; i < e.patch.n; ++i) {
-            e.box.extend(e.patch.v[i]);
-            sum += e.patch.v[i];
-        }
-        // Triangles and parallelogram-like quads: the vertex mean is the centroid
-        // (close enough for the bilinear children of a convex quad).
-        e.center = sum / static_cast<double>(e.patch.n);
+        for (int i = 0; i < e.patch.n; ++i) e.box.extend(e.patch.v[i]);
+        e.center = patchCentroid(e.patch);
     }
     for (ElementId c : e.children) updateGeometry(c);
     if (!elements_[id].isSurface()) finishCluster(id);
 }
 
+void Hierarchy::refreshAncestors(ElementId id) {
+    for (ElementId a = elements_[id].parent; a != kNone; a = elements_[a].parent) finishCluster(a);
+}
+
 std::size_t Hierarchy::memoryBytes() const {
     std::size_t bytes = elements_.capacity() * sizeof(HElement) + free_.capacity() * sizeof(ElementId);
     for (const HElement& e : elements_)
-        bytes += (e.children.capacity() + e.links.capacity() + e.plinks.capacity()) * sizeof(std::uint32_t);
+        bytes += (e.children.capacity() + e.links.capacity() + e.plinks.capacity() + e.outLinks.capacity()) *
+                 sizeof(std::uint32_t);
     return bytes;
 }
 

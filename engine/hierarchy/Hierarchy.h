@@ -39,6 +39,8 @@ public:
     // Recomputes the geometry of a subtree from the scene's polygons (after
     // subdivision, or after the object moved), then the enclosing boxes.
     void updateGeometry(ElementId id);
+    // Recomputes the boxes, areas and centres of the clusters above `id`.
+    void refreshAncestors(ElementId id);
 
     // Bytes held by elements and their link lists.
     std::size_t memoryBytes() const;

@@ -116,23 +116,90 @@ Link Refiner::compute(ElementId s, ElementId r) const {
     if (l.unoccluded <= 0.0 && !dynamic && !mustRefine) return l;  // not live: never carries light
     l.live = true;
     if (l.unoccluded > 0.0) {
-        const std::vector<glm::dvec3> ps = samplePoints(s), pr = samplePoints(r);
         std::vector<glm::dvec3> from, to;
-        for (const glm::dvec3& a : ps)
-            for (const glm::dvec3& b : pr) {
-                from.push_back(a);
-                to.push_back(b);
-            }
+        segments(s, r, from, to);
         l.visStatic = static_cast<float>(rays_.unoccludedFraction(Layer::Static, from, to));
         l.visDynamic = static_cast<float>(rays_.unoccludedFraction(Layer::Dynamic, from, to));
     }
     return l;
 }
 
+void Refiner::segments(ElementId s, ElementId r, std::vector<glm::dvec3>& from, std::vector<glm::dvec3>& to) const {
+    const std::vector<glm::dvec3> ps = samplePoints(s), pr = samplePoints(r);
+    for (const glm::dvec3& a : ps)
+        for (const glm::dvec3& b : pr) {
+            from.push_back(a);
+            to.push_back(b);
+        }
+}
+
+float Refiner::dynamicVisibility(ElementId s, ElementId r) const {
+    std::vector<glm::dvec3> from, to;
+    segments(s, r, from, to);
+    return static_cast<float>(rays_.unoccludedFraction(Layer::Dynamic, from, to));
+}
+
 LinkId Refiner::attach(const Link& link) {
     const LinkId id = links_.add(link);
-    h_[link.receiver].links.push_back(id);
+    links_[id].passive = true;  // activate() expects a p-link
+    h_[link.receiver].plinks.push_back(id);
+    activate(id);
     return id;
+}
+
+void Refiner::activate(LinkId id) {
+    Link& l = links_[id];
+    HElement& r = h_[l.receiver];
+    r.plinks.erase(std::find(r.plinks.begin(), r.plinks.end(), id));
+    r.links.push_back(id);
+    h_[l.source].outLinks.push_back(id);
+    l.passive = false;
+    l.gathered = l.formFactor();
+    // In-place gather (eq. 1): the receiver now holds this link's transfer.
+    r.irradiance += l.gathered * h_[l.source].gathered;
+    markDirty(l.receiver);
+}
+
+void Refiner::deactivate(LinkId id) {
+    Link& l = links_[id];
+    HElement& r = h_[l.receiver];
+    // Eq. 2: take back what the receiver gathered through this link.
+    r.irradiance -= l.gathered * h_[l.source].gathered;
+    markDirty(l.receiver);
+    l.gathered = 0.0;
+    r.links.erase(std::find(r.links.begin(), r.links.end(), id));
+    auto& out = h_[l.source].outLinks;
+    out.erase(std::find(out.begin(), out.end(), id));
+    r.plinks.push_back(id);
+    l.passive = true;
+}
+
+void Refiner::regather(LinkId id) {
+    Link& l = links_[id];
+    HElement& r = h_[l.receiver];
+    const double f = l.formFactor();
+    r.irradiance += (f - l.gathered) * h_[l.source].gathered;
+    markDirty(l.receiver);
+    l.gathered = f;
+}
+
+void Refiner::markDirty(ElementId e) {
+    if (h_[e].dirty) return;
+    h_[e].dirty = true;
+    dirty_.push_back(e);
+}
+
+std::vector<ElementId> Refiner::takeDirty() {
+    std::vector<ElementId> out;
+    out.swap(dirty_);
+    return out;
+}
+
+void Refiner::remove(LinkId id) {
+    if (!links_[id].passive) deactivate(id);
+    HElement& r = h_[links_[id].receiver];
+    r.plinks.erase(std::find(r.plinks.begin(), r.plinks.end(), id));
+    links_.remove(id);
 }
 
 void Refiner::linkRoot() {
@@ -203,10 +270,7 @@ void Refiner::refine(LinkId id, std::vector<LinkId>& created) {
     for (const Link& l : computed)
         if (l.live) created.push_back(attach(l));
     // The refined link stays as a p-link on its receiver.
-    HElement& r = h_[parent.receiver];
-    r.links.erase(std::find(r.links.begin(), r.links.end(), id));
-    r.plinks.push_back(id);
-    links_[id].passive = true;
+    deactivate(id);
 }
 
 std::size_t Refiner::refineAll() {

@@ -39,7 +39,22 @@ public:
     // The link s -> r computed but not attached; `live` is false when it
     // carries nothing and never can (facing away, both static).
     Link compute(ElementId s, ElementId r) const;
-    LinkId attach(const Link& link);
+    // Only the dynamic part of the visibility (sec. 3.4): what a move changes
+    // for a link whose two ends stay put.
+    float dynamicVisibility(ElementId s, ElementId r) const;
+
+    // Link bookkeeping. Each keeps the receiver's irradiance equal to the sum
+    // of gathered F times the source's gathered B over its active links (the
+    // in-place gather, eq. 1 and 2), and marks the receiver dirty.
+    LinkId attach(const Link& link);  // a new active link
+    void activate(LinkId id);         // p-link -> active (reinstate)
+    void deactivate(LinkId id);       // active -> p-link (refined)
+    void regather(LinkId id);         // its form factor changed
+    void remove(LinkId id);           // active or passive, gone
+
+    // Elements whose own irradiance changed since the last takeDirty().
+    void markDirty(ElementId e);
+    std::vector<ElementId> takeDirty();
 
     // The first link of a solve: the root cluster with itself.
     void linkRoot();
@@ -66,6 +81,7 @@ private:
     bool canSplit(ElementId e) const;
     FormFactorEstimate unoccludedFormFactor(ElementId s, ElementId r) const;
     std::vector<glm::dvec3> samplePoints(ElementId e) const;
+    void segments(ElementId s, ElementId r, std::vector<glm::dvec3>& from, std::vector<glm::dvec3>& to) const;
     bool touchesDynamic(ElementId e) const;
     std::vector<std::pair<ElementId, ElementId>> childPairs(const Link& link);
 
@@ -77,6 +93,7 @@ private:
     // Per cluster: points on its surfaces, stratified by area, for visibility rays.
     std::vector<std::array<glm::dvec3, 4>> clusterSamples_;
     bool capReached_ = false;
+    std::vector<ElementId> dirty_;
 };
 
 // Luminance of linear RGB (Rec. 709), the scalar used for error estimates.

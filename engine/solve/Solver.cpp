@@ -9,13 +9,14 @@
 namespace rad {
 
 void Solver::gatherAll() {
+    for (ElementId id = 0; id < h_.size(); ++id) h_[id].gathered = h_[id].radiosity;
     tbb::parallel_for(ElementId(0), static_cast<ElementId>(h_.size()), [&](ElementId id) {
         HElement& e = h_[id];
         glm::dvec3 irradiance(0.0);
         for (LinkId l : e.links) {
             Link& link = links_[l];
             link.gathered = link.formFactor();
-            irradiance += link.gathered * h_[link.source].radiosity;
+            irradiance += link.gathered * h_[link.source].gathered;
         }
         e.irradiance = irradiance;
     });
@@ -39,6 +40,7 @@ glm::dvec3 Solver::pushPull(ElementId id, const glm::dvec3& down, double& change
         if (area > 0.0) b /= area;
     }
     h_[id].radiosity = b;
+    h_[id].changed = h_[id].dirty = false;
     return b;
 }
 
@@ -46,6 +48,36 @@ double Solver::pushPull() {
     double change = 0.0, total = 0.0;
     pushPull(h_.root(), glm::dvec3(0.0), change, total);
     return total > 0.0 ? change / total : 0.0;
+}
+
+std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dirty) {
+    for (ElementId e : dirty)
+        for (ElementId a = e; a != kNone && !h_[a].changed; a = h_[a].parent) h_[a].changed = true;
+    std::vector<ElementId> visited;
+    partialPushPull(h_.root(), glm::dvec3(0.0), false, visited);
+    return visited;
+}
+
+glm::dvec3 Solver::partialPushPull(ElementId id, const glm::dvec3& down, bool forced, std::vector<ElementId>& visited) {
+    HElement& e = h_[id];
+    if (!forced && !e.changed) return e.radiosity;
+    visited.push_back(id);
+    const glm::dvec3 arriving = down + e.irradiance;
+    glm::dvec3 b(0.0);
+    if (e.isLeaf()) {
+        if (e.isSurface()) b = e.emission + e.reflectance * arriving;
+    } else {
+        const bool below = forced || e.dirty;
+        double area = 0.0;
+        for (ElementId c : e.children) {
+            b += h_[c].area * partialPushPull(c, arriving, below, visited);
+            area += h_[c].area;
+        }
+        if (area > 0.0) b /= area;
+    }
+    e.radiosity = b;
+    e.changed = e.dirty = false;
+    return b;
 }
 
 SolveResult Solver::solve(const SolveSettings& settings, const std::function<void(int, double)>& progress) {

@@ -43,6 +43,10 @@ public:
     // Pushes irradiance down, computes leaf radiosity, pulls area-weighted
     // means up. Returns the area-weighted relative change of leaf radiosity.
     double pushPull();
+    // Partial push-pull (Fig. 7): only the paths to the dirty elements and the
+    // subtrees below them are visited; elsewhere the stored B stands. Clears
+    // the marks. Returns the elements visited.
+    std::vector<ElementId> partialPushPull(const std::vector<ElementId>& dirty);
     // Iterates gather and push-pull until converged or maxIterations.
     SolveResult solve(const SolveSettings& settings, const std::function<void(int, double)>& progress = {});
 
@@ -50,6 +54,7 @@ public:
 
 private:
     glm::dvec3 pushPull(ElementId e, const glm::dvec3& down, double& change, double& total);
+    glm::dvec3 partialPushPull(ElementId e, const glm::dvec3& down, bool forced, std::vector<ElementId>& visited);
     Hierarchy& h_;
     LinkStore& links_;
 };

@@ -1,0 +1,86 @@
+#include "snapshot/Sampling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "refine/Refiner.h"
+
+namespace rad {
+namespace {
+
+std::vector<glm::dvec2> paramSamples(int vertexCount) {
+    std::vector<glm::dvec2> uv;
+    if (vertexCount == 4) {
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) uv.emplace_back((i + 0.5) / 4.0, (j + 0.5) / 4.0);
+        return uv;
+    }
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; i + j < 4; ++j) {
+            uv.emplace_back((i + 1.0 / 3.0) / 4.0, (j + 1.0 / 3.0) / 4.0);  // upward
+            if (i + j < 3) uv.emplace_back((i + 2.0 / 3.0) / 4.0, (j + 2.0 / 3.0) / 4.0);  // downward
+        }
+    return uv;
+}
+
+// Whether uv lies in the convex parametric polygon of an element (edges count).
+bool contains(const HElement& e, const glm::dvec2& uv) {
+    for (int k = 0; k < e.patch.n; ++k) {
+        const glm::dvec2 a = e.param[k], b = e.param[(k + 1) % e.patch.n];
+        const double cross = (b.x - a.x) * (uv.y - a.y) - (b.y - a.y) * (uv.x - a.x);
+        if (cross < -1e-12) return false;
+    }
+    return true;
+}
+
+glm::dvec3 leafRadiosity(const Hierarchy& h, ElementId e, const glm::dvec2& uv) {
+    while (!h[e].isLeaf()) {
+        ElementId next = kNone;
+        for (ElementId c : h[e].children)
+            if (contains(h[c], uv)) {
+                next = c;
+                break;
+            }
+        if (next == kNone) break;
+        e = next;
+    }
+    return h[e].radiosity;
+}
+
+}  // namespace
+
+RadiositySamples sampleRadiosity(const Scene& scene, const Hierarchy& hierarchy) {
+    RadiositySamples out;
+    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
+        const ElementId top = hierarchy.polygonElement(p);
+        const std::vector<glm::dvec2> uv = paramSamples(scene.polygons[p].vertexCount);
+        const double w = scene.polygons[p].area() / static_cast<double>(uv.size());
+        for (const glm::dvec2& s : uv) {
+            out.luminance.push_back(top == kNone ? 0.0 : luminance(leafRadiosity(hierarchy, top, s)));
+            out.weight.push_back(w);
+        }
+    }
+    return out;
+}
+
+SolutionError compareSamples(const RadiositySamples& solution, const RadiositySamples& reference) {
+    if (solution.luminance.size() != reference.luminance.size())
+        throw std::invalid_argument("compareSamples: the two solutions are of different scenes");
+    double area = 0.0, mean = 0.0, squared = 0.0, largest = 0.0;
+    for (std::size_t i = 0; i < reference.luminance.size(); ++i) {
+        const double w = reference.weight[i], d = solution.luminance[i] - reference.luminance[i];
+        area += w;
+        mean += w * reference.luminance[i];
+        squared += w * d * d;
+        largest = std::max(largest, std::abs(d));
+    }
+    SolutionError e;
+    if (area <= 0.0 || mean <= 0.0) return e;
+    mean /= area;
+    e.rms = std::sqrt(squared / area) / mean;
+    e.max = largest / mean;
+    return e;
+}
+
+}  // namespace rad
