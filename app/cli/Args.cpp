@@ -16,6 +16,13 @@ const OptionSpec* findOption(const std::vector<OptionSpec>& options, const std::
 
 }  // namespace
 
+std::vector<std::string> ParsedArgs::all(const std::string& name) const {
+    std::vector<std::string> out;
+    for (const auto& [n, v] : ordered)
+        if (n == name) out.push_back(v);
+    return out;
+}
+
 std::optional<std::string> ParsedArgs::value(const std::string& name) const {
     auto it = values.find(name);
     if (it == values.end()) return std::nullopt;
@@ -48,9 +55,11 @@ ParsedArgs parseArgs(const std::vector<std::string>& args, const std::vector<Opt
             parsed.flags.insert(name);
         } else if (eq != std::string::npos) {
             parsed.values[name] = arg.substr(eq + 1);
+            parsed.ordered.emplace_back(name, parsed.values[name]);
         } else {
             if (i + 1 >= args.size()) throw UsageError(name + " needs a value " + spec->valueName);
             parsed.values[name] = args[++i];
+            parsed.ordered.emplace_back(name, parsed.values[name]);
         }
     }
     return parsed;
@@ -91,6 +100,20 @@ long long parseInteger(const std::string& option, const std::string& text, long 
         throw UsageError(option + ": " + text + " is outside " + std::to_string(lo) + ".." +
                          std::to_string(hi));
     return v;
+}
+
+std::vector<double> parseNumbers(const std::string& option, const std::string& text, std::size_t count) {
+    std::vector<double> out;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        out.push_back(parseDouble(option, text.substr(start, comma - start)));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    if (out.size() != count)
+        throw UsageError(option + ": expected " + std::to_string(count) + " comma-separated numbers, got '" + text + "'");
+    return out;
 }
 
 ImageSize parseSize(const std::string& option, const std::string& text, int lo, int hi) {

@@ -17,6 +17,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rad::cli {
@@ -39,7 +40,10 @@ struct ParsedArgs {
     std::vector<std::string> positionals;
     std::map<std::string, std::string> values;  // options with a value (the last one wins)
     std::set<std::string> flags;                // options without a value, and --help
+    std::vector<std::pair<std::string, std::string>> ordered;  // every valued option, in order
 
+    // Every value of a repeatable option, in command-line order.
+    std::vector<std::string> all(const std::string& name) const;
     bool has(const std::string& name) const {
         return flags.count(name) > 0 || values.count(name) > 0;
     }
@@ -64,6 +68,9 @@ struct ImageSize {
     int height = 0;
 };
 // "WxH", each in [lo, hi].
+// "X,Y,Z" (count 3) or "AX,AY,AZ,DEG" (count 4): finite numbers.
+std::vector<double> parseNumbers(const std::string& option, const std::string& text, std::size_t count);
+
 ImageSize parseSize(const std::string& option, const std::string& text, int lo = 1, int hi = 8192);
 
 // Exactly one positional per name; errors name the missing one ("missing SCENE", "unexpected

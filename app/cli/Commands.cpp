@@ -39,6 +39,8 @@ const std::vector<CommandInfo>& commands() {
         {"render", "SCENE --image OUT [options]",
          "render a glTF scene's material preview to PNG or PFM", &runRender},
         {"solve", "SCENE [options]", "solve a scene's radiosity; report, image and glTF export", &runSolve},
+        {"animate", "SCENE --object NAME --frames N (--translate|--rotate)...",
+         "move an object in steps, updating through the line-space hierarchy", &runAnimate},
     };
     return table;
 }

@@ -34,4 +34,8 @@ int runRender(const std::vector<std::string>& args);
 // radiosity-cli solve SCENE [--epsilon E] [--min-area A] [--report R.json] [--image OUT] [--size WxH] [--export OUT.glb]
 int runSolve(const std::vector<std::string>& args);
 
+// radiosity-cli animate SCENE --object NAME --frames N (--translate X,Y,Z | --rotate AX,AY,AZ,DEG)...
+//                       [--compare-full] [--report R.json] [--images DIR] [--size WxH]
+int runAnimate(const std::vector<std::string>& args);
+
 }  // namespace rad::cli

@@ -11,6 +11,7 @@
 #include "Engine.h"
 #include "cli/Args.h"
 #include "cli/Commands.h"
+#include "cli/EngineOptions.h"
 #include "cli/Json.h"
 #include "cli/RenderOutput.h"
 #include "scene/GltfExport.h"
@@ -20,17 +21,18 @@ namespace rad::cli {
 namespace {
 
 const std::vector<OptionSpec>& solveOptions() {
-    static const std::vector<OptionSpec> options{
-        {"--epsilon", "E", "BF refinement threshold, relative to the total emitted power (default 2e-4)"},
-        {"--min-area", "A", "area threshold in m^2 (default: 2e-5 of the scene's polygon area)"},
-        {"--max-iterations", "N", "gather/push-pull sweeps per round before giving up (default 5000)"},
+    static const std::vector<OptionSpec> options = [] {
+        std::vector<OptionSpec> o = engineOptions();
+        o.insert(o.end(), {
         {"--report", "R.json", "write a JSON report of counts, times, memory, energy and object radiosity"},
         {"--image", "OUT", "render the solution: .png sRGB-encoded, .pfm linear radiosity B"},
         {"--size", "WxH", "image size, each side 1..8192 (default 512 high, the camera's aspect)"},
         {"--exposure", "EV", "PNG only: multiply by 2^EV before sRGB encoding (default 0)"},
         {"--export", "OUT.glb", "write the lit mesh as glTF (.glb or .gltf) with COLOR_0 = B"},
         {"--force", "", "overwrite existing output files"},
-    };
+        });
+        return o;
+    }();
     return options;
 }
 
@@ -108,17 +110,7 @@ int runSolve(const std::vector<std::string>& argv) {
     }
     requirePositionals(args, {"SCENE"});
     const std::string scenePath = args.positionals[0];
-    EngineSettings settings;
-    if (auto v = args.value("--epsilon")) {
-        settings.epsilon = parseDouble("--epsilon", *v);
-        if (!(settings.epsilon > 0.0)) throw UsageError("--epsilon: must be > 0, got '" + *v + "'");
-    }
-    if (auto v = args.value("--min-area")) {
-        settings.minArea = parseDouble("--min-area", *v);
-        if (!(settings.minArea > 0.0)) throw UsageError("--min-area: must be > 0, got '" + *v + "'");
-    }
-    if (auto v = args.value("--max-iterations"))
-        settings.solve.maxIterations = static_cast<int>(parseInteger("--max-iterations", *v, 1, 10'000'000));
+    const EngineSettings settings = engineSettingsFrom(args);
     const bool force = args.has("--force");
     std::optional<ImageRequest> image;
     if (auto v = args.value("--image")) {
