@@ -46,6 +46,21 @@ void gaussLegendre01(int n, std::vector<double>& nodes, std::vector<double>& wei
     }
 }
 
+struct GaussRule {
+    std::vector<double> nodes, weights;
+};
+
+// The rules for orders 1..64, computed once: the Newton iteration above costs
+// more than the form factor it serves.
+const GaussRule& gaussRule(int order) {
+    static const std::vector<GaussRule> rules = [] {
+        std::vector<GaussRule> r(65);
+        for (int n = 1; n <= 64; ++n) gaussLegendre01(n, r[n].nodes, r[n].weights);
+        return r;
+    }();
+    return rules[order];
+}
+
 }  // namespace
 
 double polygonArea(const PatchGeometry& polygon) { return 0.5 * glm::length(vectorArea2(polygon)); }
@@ -118,8 +133,8 @@ std::vector<SamplePoint> patchSamples(const PatchGeometry& patch, int order) {
         samples.push_back({c / double(count), 1.0});
         return samples;
     }
-    std::vector<double> t, w;
-    gaussLegendre01(order, t, w);
+    const std::vector<double>& t = gaussRule(order).nodes;
+    const std::vector<double>& w = gaussRule(order).weights;
     samples.reserve(static_cast<std::size_t>(order) * order);
     double total = 0.0;
     const auto& v = patch.v;

@@ -1,0 +1,67 @@
+// A chair moving across the room, updated through the line-space hierarchy
+// (issue: interactive update). Per frame: traversal, update + refinement,
+// push-pull; median and worst frame; the ratio of a from-scratch solve to
+// the median update, measured in the same run; bytes per link with and
+// without stored shafts; the speedup of two threads over one.
+//   build/bench/radiosity-bench --benchmark_filter=ChairMove
+
+#include <algorithm>
+#include <chrono>
+
+#include <benchmark/benchmark.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <tbb/global_control.h>
+
+#include "Engine.h"
+#include "geometry/Shaft.h"
+#include "scene/GltfImport.h"
+
+namespace {
+
+constexpr int kFrames = 10;
+constexpr double kDistance = 1.0;  // metres along +x
+
+void ChairMove(benchmark::State& state, const char* scene) {
+    const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
+    const rad::Scene loaded = rad::loadGltf(std::string(RADIOSITY_SOURCE_DIR) + "/scenes/" + scene);
+    std::vector<double> traversal, update, pushPull, total;
+    double fullSeconds = 0.0, bytesPerLink = 0.0, shaftFraction = 0.0;
+    for (auto _ : state) {
+        const auto t0 = std::chrono::steady_clock::now();
+        rad::Engine engine(loaded, rad::EngineSettings{});
+        const rad::SolveStats& st = engine.solve();
+        fullSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        bytesPerLink = double(st.memory.total()) / double(st.links + st.passiveLinks);
+        engine.setDynamicObject("chair");
+        const std::uint32_t chair = *engine.scene().findObject("chair");
+        const glm::dmat4 start = engine.scene().objects[chair].worldFromLocal;
+        for (int f = 1; f <= kFrames; ++f) {
+            const auto m = glm::translate(glm::dmat4(1.0), glm::dvec3(kDistance * f / kFrames, 0, 0)) * start;
+            const rad::FrameStats fs = engine.moveDynamicObject(m);
+            traversal.push_back(fs.traversalSeconds);
+            update.push_back(fs.updateSeconds);
+            pushPull.push_back(fs.pushPullSeconds);
+            total.push_back(fs.totalSeconds);
+            shaftFraction = std::max(shaftFraction, double(fs.shaftTests) / double(fs.links));
+        }
+    }
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+    };
+    state.counters["median_total_s"] = median(total);
+    state.counters["worst_total_s"] = *std::max_element(total.begin(), total.end());
+    state.counters["median_traversal_s"] = median(traversal);
+    state.counters["median_update_s"] = median(update);
+    state.counters["median_push_pull_s"] = median(pushPull);
+    state.counters["full_solve_s"] = fullSeconds;
+    state.counters["full_over_update"] = fullSeconds / median(total);
+    state.counters["bytes_per_link"] = bytesPerLink;
+    state.counters["bytes_per_link_stored_shafts"] = bytesPerLink + double(sizeof(rad::Shaft));
+    state.counters["max_shaft_tests_per_link"] = shaftFraction;
+}
+
+BENCHMARK_CAPTURE(ChairMove, office, "office.gltf")->Arg(1)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(ChairMove, two_offices, "two-offices.gltf")->Arg(1)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
