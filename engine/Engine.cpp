@@ -111,6 +111,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     s.solver.pushPull();
     for (int round = 1; round <= s.settings.maxRefineRounds; ++round) {
         auto t = std::chrono::steady_clock::now();
+        for (ElementId e = 0; e < s.hierarchy.size(); ++e) s.hierarchy[e].oracle = luminance(s.hierarchy[e].radiosity);
         const std::size_t refined = s.refiner.refineAll();
         st.refineSeconds += secondsSince(t);
         st.refineRounds = round;

@@ -48,6 +48,10 @@ struct HElement {
     // The B that the receivers of this element's links currently hold in
     // their irradiance: the in-place gather adds F times the difference.
     glm::dvec3 gathered{0.0};
+    // The source luminance that refinement decisions use: B from the converged
+    // solve, then frozen while objects move, so that the link hierarchy is a
+    // function of the geometry alone and moving back restores it.
+    double oracle = 0.0;
     bool changed = false;  // on the path to a modified element (sec. 4.1, Fig. 7)
     bool dirty = false;    // own irradiance changed: the whole subtree is pushed again
 

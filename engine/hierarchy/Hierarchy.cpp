@@ -209,6 +209,7 @@ void Hierarchy::subdivide(ElementId id) {
         c.emission = parent.emission;
         c.radiosity = parent.radiosity;
         c.gathered = parent.gathered;
+        c.oracle = parent.oracle;
         kids.push_back(add(std::move(c)));
     }
     elements_[id].children = kids;

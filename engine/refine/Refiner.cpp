@@ -232,7 +232,7 @@ bool Refiner::wouldRefine(const Link& link) const {
     const double v = link.visibility();
     const double f = (v > 0.0 && v < 1.0) ? link.unoccluded : link.formFactor();
     // BF, and the same bound on how much the transfer varies across the receiver.
-    const double bound = luminance(h_[link.source].radiosity) * h_[link.receiver].area *
+    const double bound = h_[link.source].oracle * h_[link.receiver].area *
                          std::max(f, double(link.spread) * v);
     return bound > settings_.epsilon * settings_.referencePower;
 }

@@ -158,11 +158,7 @@ bool LineSpaceUpdate::subtreeUnlinked(ElementId e) const {
 
 void LineSpaceUpdate::updateCandidates(FrameStats& stats) {
     // Sec. 5.2: the link with the highest potential power transfer is refined first.
-    using Entry = std::pair<double, LinkId>;
-    std::priority_queue<Entry> heap;
-    auto key = [&](const Link& l) {
-        return luminance(h_[l.source].gathered) * l.unoccluded * h_[l.receiver].area;
-    };
+    RefineHeap heap;
     // Drop candidates a reinstate removed; recompute the rest on all cores
     // (each writes only its own link; the geometry and the rays are read-only).
     std::erase_if(candidates_, [&](LinkId id) { return !links_[id].live || links_[id].passive; });
@@ -170,23 +166,32 @@ void LineSpaceUpdate::updateCandidates(FrameStats& stats) {
     for (LinkId id : candidates_) {
         ++stats.candidates;
         if (refiner_.wouldRefine(links_[id])) {
-            heap.push({key(links_[id]), id});
+            heap.push({heapKey(links_[id]), id});
         } else {
             refiner_.regather(id);  // eq. 1
             ++stats.linksUpdated;
         }
     }
+    refineFromHeap(heap, stats);
+}
+
+void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats) {
     std::vector<LinkId> created;
     while (!heap.empty()) {
         const LinkId id = heap.top().second;
         heap.pop();
+        if (!links_[id].live || links_[id].passive) continue;
         created.clear();
         refiner_.refine(id, created);  // eq. 2 for the parent, new transfers for the children
         ++stats.refined;
         ++stats.linksUpdated;
         for (LinkId c : created)
-            if (refiner_.wouldRefine(links_[c])) heap.push({key(links_[c]), c});
+            if (refiner_.wouldRefine(links_[c])) heap.push({heapKey(links_[c]), c});
     }
+}
+
+double LineSpaceUpdate::heapKey(const Link& l) const {
+    return luminance(h_[l.source].gathered) * l.unoccluded * h_[l.receiver].area;
 }
 
 void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats) {

@@ -9,6 +9,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <queue>
+#include <utility>
 #include <vector>
 
 #include "hierarchy/Hierarchy.h"
@@ -66,7 +68,11 @@ private:
     void reinstate(LinkId id);
     void removeLineSpaceChildren(ElementId e, const IndexRange& sources, LinkId keep);
     bool subtreeUnlinked(ElementId e) const;
+    using RefineHeap = std::priority_queue<std::pair<double, LinkId>>;
     void updateCandidates(FrameStats& stats);
+    // Sec. 5.2: the link with the highest potential power transfer first.
+    void refineFromHeap(RefineHeap& heap, FrameStats& stats);
+    double heapKey(const Link& l) const;
     void bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats);
 
     Hierarchy& h_;
