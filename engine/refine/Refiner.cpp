@@ -17,6 +17,14 @@ double radius(const HElement& e) { return 0.5 * glm::length(e.box.extent()); }
 // a neighbouring polygon that meets this one at an edge.
 glm::dvec3 lift(const glm::dvec3& p, const glm::dvec3& normal, double size) { return p + 1e-4 * size * normal; }
 
+// Link lists are sets: removal swaps the last entry in (a light can hold
+// thousands of outgoing links; shifting them on every removal would not do).
+void unorderedErase(std::vector<LinkId>& list, LinkId id) {
+    const auto it = std::find(list.begin(), list.end(), id);
+    *it = list.back();
+    list.pop_back();
+}
+
 }  // namespace
 
 Refiner::Refiner(Hierarchy& hierarchy, LinkStore& links, const RayCaster& rays, RefineSettings settings)
@@ -150,7 +158,7 @@ LinkId Refiner::attach(const Link& link) {
 void Refiner::activate(LinkId id) {
     Link& l = links_[id];
     HElement& r = h_[l.receiver];
-    r.plinks.erase(std::find(r.plinks.begin(), r.plinks.end(), id));
+    unorderedErase(r.plinks, id);
     r.links.push_back(id);
     h_[l.source].outLinks.push_back(id);
     l.passive = false;
@@ -167,9 +175,9 @@ void Refiner::deactivate(LinkId id) {
     r.irradiance -= l.gathered * h_[l.source].gathered;
     markDirty(l.receiver);
     l.gathered = 0.0;
-    r.links.erase(std::find(r.links.begin(), r.links.end(), id));
+    unorderedErase(r.links, id);
     auto& out = h_[l.source].outLinks;
-    out.erase(std::find(out.begin(), out.end(), id));
+    unorderedErase(out, id);
     r.plinks.push_back(id);
     l.passive = true;
 }
@@ -198,7 +206,7 @@ std::vector<ElementId> Refiner::takeDirty() {
 void Refiner::remove(LinkId id) {
     if (!links_[id].passive) deactivate(id);
     HElement& r = h_[links_[id].receiver];
-    r.plinks.erase(std::find(r.plinks.begin(), r.plinks.end(), id));
+    unorderedErase(r.plinks, id);
     links_.remove(id);
 }
 
@@ -261,16 +269,23 @@ std::vector<std::pair<ElementId, ElementId>> Refiner::childPairs(const Link& lin
     return pairs;
 }
 
-void Refiner::refine(LinkId id, std::vector<LinkId>& created) {
-    const Link parent = links_[id];
-    const auto pairs = childPairs(parent);
+void Refiner::refine(LinkId id, std::vector<LinkId>& created) { refine(std::vector<LinkId>{id}, created); }
+
+void Refiner::refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created) {
+    // Subdivide first (it changes the hierarchy), then compute every new
+    // link of the batch on all cores, then attach them in a fixed order.
+    std::vector<std::pair<ElementId, ElementId>> pairs;
+    for (LinkId id : ids) {
+        const auto p = childPairs(links_[id]);
+        pairs.insert(pairs.end(), p.begin(), p.end());
+    }
     std::vector<Link> computed(pairs.size());
     tbb::parallel_for(std::size_t(0), pairs.size(),
                       [&](std::size_t i) { computed[i] = compute(pairs[i].first, pairs[i].second); });
     for (const Link& l : computed)
         if (l.live) created.push_back(attach(l));
-    // The refined link stays as a p-link on its receiver.
-    deactivate(id);
+    // The refined links stay as p-links on their receivers.
+    for (LinkId id : ids) deactivate(id);
 }
 
 std::size_t Refiner::refineAll() {
@@ -279,17 +294,17 @@ std::size_t Refiner::refineAll() {
         for (LinkId l : h_[e].links) wave.push_back(l);
     std::size_t refined = 0;
     while (!wave.empty()) {
-        std::vector<LinkId> next;
-        for (LinkId id : wave) {
-            if (!wouldRefine(links_[id])) continue;
-            if (links_.liveCount() >= settings_.maxLinks) {
-                capReached_ = true;
-                return refined;
-            }
-            refine(id, next);
-            ++refined;
+        std::vector<LinkId> batch;
+        for (LinkId id : wave)
+            if (wouldRefine(links_[id])) batch.push_back(id);
+        if (batch.empty()) break;
+        if (links_.liveCount() + 4 * batch.size() > settings_.maxLinks) {
+            capReached_ = true;
+            break;
         }
-        wave = std::move(next);
+        wave.clear();
+        refine(batch, wave);
+        refined += batch.size();
     }
     return refined;
 }

@@ -67,6 +67,9 @@ public:
     // Subdivides the link's larger element and replaces the link by its
     // line-space children; the link becomes a p-link. Appends the new links.
     void refine(LinkId id, std::vector<LinkId>& created);
+    // The same for a batch of distinct active links, their new links computed
+    // in parallel.
+    void refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created);
 
     bool capReached() const { return capReached_; }
     const RefineSettings& settings() const { return settings_; }

@@ -63,6 +63,11 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
 }
 
 bool LineSpaceUpdate::affectedByMotion(ElementId s, ElementId r) {
+    // Both ends on the object: a rigid motion changes neither the form factor
+    // nor the object's occlusion of its own parts. (Static geometry that ends
+    // up between two of its parts is not seen: the links keep their static
+    // visibility.)
+    if (!layersChanged_ && moved_.contains(h_[s].range) && moved_.contains(h_[r].range)) return false;
     if (touches(moved_, h_[s].range) || touches(moved_, h_[r].range)) return true;
     ++shaftTests_;
     // The shaft is built only when tested: storing one per link would cost
@@ -88,16 +93,20 @@ void LineSpaceUpdate::recompute(LinkId id) {
 
 void LineSpaceUpdate::findModifiedLinks(ElementId he, const IndexRange& ind) {
     std::vector<IndexRange> descend;  // source ranges whose line-space children lie below
-    const std::vector<LinkId> plinks = h_[he].plinks;
-    for (LinkId pl : plinks) {
+    // The affected p-links of he, recomputed together (in parallel) before
+    // any is judged: the shaft tests are cheap, the new transfers are not.
+    std::vector<LinkId> affected;
+    for (LinkId pl : h_[he].plinks) {
+        const ElementId q = links_[pl].source;  // the "source" node
+        if (ind.contains(h_[q].range) && affectedByMotion(q, he)) affected.push_back(pl);
+    }
+    tbb::parallel_for(std::size_t(0), affected.size(), [&](std::size_t i) { recompute(affected[i]); });
+    for (LinkId pl : affected) {
         const Link& l = links_[pl];
         // A reinstate earlier in this loop may have removed it.
         if (!l.live || !l.passive || l.receiver != he) continue;
-        const ElementId q = l.source;  // the "source" node
-        if (!ind.contains(h_[q].range) || !affectedByMotion(q, he)) continue;
-        recompute(pl);
-        if (refiner_.wouldRefine(links_[pl]))
-            descend.push_back(h_[q].range);
+        if (refiner_.wouldRefine(l))
+            descend.push_back(h_[l.source].range);
         else
             reinstate(pl);
     }
@@ -176,15 +185,20 @@ void LineSpaceUpdate::updateCandidates(FrameStats& stats) {
 }
 
 void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats) {
-    std::vector<LinkId> created;
+    // Without a budget every link in the heap is refined: take them all as one
+    // batch (highest transfer first) so the new links are computed in parallel.
+    std::vector<LinkId> batch, created;
     while (!heap.empty()) {
-        const LinkId id = heap.top().second;
-        heap.pop();
-        if (!links_[id].live || links_[id].passive) continue;
+        batch.clear();
+        while (!heap.empty()) {
+            const LinkId id = heap.top().second;
+            heap.pop();
+            if (links_[id].live && !links_[id].passive) batch.push_back(id);
+        }
         created.clear();
-        refiner_.refine(id, created);  // eq. 2 for the parent, new transfers for the children
-        ++stats.refined;
-        ++stats.linksUpdated;
+        refiner_.refine(batch, created);  // eq. 2 for the parents, new transfers for the children
+        stats.refined += batch.size();
+        stats.linksUpdated += batch.size();
         for (LinkId c : created)
             if (refiner_.wouldRefine(links_[c])) heap.push({heapKey(links_[c]), c});
     }

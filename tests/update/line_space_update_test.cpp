@@ -212,7 +212,11 @@ TEST(LineSpaceUpdate, MoveInsideClosedCupboardChangesLittle) {
     RecordProperty("rms", std::to_string(e.rms));
     EXPECT_LT(e.rms, 1e-3);
     EXPECT_GT(open.linksUpdated, 0u);
-    EXPECT_LT(static_cast<double>(inside.linksUpdated), 0.2 * static_cast<double>(open.linksUpdated));
+    // The box's own links (to the cupboard's inside) are all that changes: a
+    // small part of the scene's links. (Links with both ends on the moving
+    // object are not updated, so the chair's count is not a fair yardstick.)
+    EXPECT_LT(static_cast<double>(inside.linksUpdated), 0.05 * static_cast<double>(inside.links));
+    EXPECT_LT(inside.refined, open.refined);
     EXPECT_GT(chairChange.rms, 10.0 * e.rms) << "moving the chair should show";
 }
 
