@@ -145,6 +145,8 @@ const SolveStats& Engine::solve(const Progress& progress) {
         st.links += s.hierarchy[e].links.size();
         st.passiveLinks += s.hierarchy[e].plinks.size();
     }
+    s.hierarchy.compact();
+    s.links.compact();
     st.memory = {s.hierarchy.memoryBytes(), s.links.memoryBytes()};
     st.energy = s.solver.energy();
     // The full sweeps left every receiver's irradiance consistent with the

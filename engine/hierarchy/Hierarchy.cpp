@@ -247,6 +247,15 @@ void Hierarchy::refreshAncestors(ElementId id) {
     for (ElementId a = elements_[id].parent; a != kNone; a = elements_[a].parent) finishCluster(a);
 }
 
+void Hierarchy::compact() {
+    elements_.shrink_to_fit();
+    for (HElement& e : elements_) {
+        e.links.shrink_to_fit();
+        e.plinks.shrink_to_fit();
+        e.outLinks.shrink_to_fit();
+    }
+}
+
 std::size_t Hierarchy::memoryBytes() const {
     std::size_t bytes = elements_.capacity() * sizeof(HElement) + free_.capacity() * sizeof(ElementId);
     for (const HElement& e : elements_)

@@ -42,6 +42,9 @@ public:
     // Recomputes the boxes, areas and centres of the clusters above `id`.
     void refreshAncestors(ElementId id);
 
+    // Drops the growth slack of the element array and the link lists.
+    void compact();
+
     // Bytes held by elements and their link lists.
     std::size_t memoryBytes() const;
 

@@ -56,6 +56,12 @@ public:
     const Link& operator[](LinkId id) const { return links_[id]; }
     std::size_t slots() const { return links_.size(); }
     std::size_t liveCount() const { return links_.size() - free_.size(); }
+    // Drops the growth slack of the storage (after a solve: links come and go
+    // by a few percent per move from then on).
+    void compact() {
+        links_.shrink_to_fit();
+        free_.shrink_to_fit();
+    }
     std::size_t memoryBytes() const { return links_.capacity() * sizeof(Link) + free_.capacity() * sizeof(LinkId); }
 
 private:
