@@ -1,5 +1,6 @@
 #include "Engine.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "links/Link.h"
 #include "refine/Refiner.h"
 #include "snapshot/RadiositySnapshot.h"
+#include "update/BudgetControl.h"
 
 namespace rad {
 namespace {
@@ -75,6 +77,7 @@ struct Engine::State {
     Refiner refiner;
     Solver solver;
     LineSpaceUpdate updater;
+    BudgetControl budget{1e-5};
     SolveStats stats;
     bool solved = false;
 
@@ -153,6 +156,8 @@ const SolveStats& Engine::solve(const Progress& progress) {
     // sources' gathered B: the in-place updates start from here.
     s.refiner.takeDirty();
     s.solved = true;
+    // First guess of a link update's cost: the refinement time per link made.
+    s.budget = BudgetControl(st.refineSeconds / double(std::max<std::size_t>(1, st.links + st.passiveLinks)));
     return st;
 }
 
@@ -201,7 +206,27 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
     s.hierarchy.refreshAncestors(cluster);
     s.refiner.refreshClusterSamples(cluster);
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
-    return s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
+    const FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
+    s.budget.record(stats.spent, stats.totalSeconds);
+    return stats;
+}
+
+FrameStats Engine::refinePending(const UpdateSettings& settings) {
+    if (!state_->solved) throw std::logic_error("refinePending before solve()");
+    return state_->updater.refinePending(settings);
+}
+
+std::size_t Engine::budgetFor(double targetSeconds) const { return state_->budget.budgetFor(targetSeconds); }
+
+std::size_t Engine::linksCarrying(std::uint32_t from, const glm::dvec2& uvFrom, std::uint32_t to,
+                                  const glm::dvec2& uvTo) const {
+    const State& s = *state_;
+    const std::vector<ElementId> sources = s.hierarchy.pathTo(from, uvFrom);
+    std::size_t count = 0;
+    for (ElementId r : s.hierarchy.pathTo(to, uvTo))
+        for (LinkId id : s.hierarchy[r].links)
+            count += std::find(sources.begin(), sources.end(), s.links[id].source) != sources.end();
+    return count;
 }
 
 RadiositySamples Engine::samples() const { return sampleRadiosity(state_->scene, state_->hierarchy); }

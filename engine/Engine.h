@@ -84,6 +84,21 @@ public:
     // Throws std::invalid_argument for a non-rigid or non-finite transform.
     FrameStats moveDynamicObject(const glm::dmat4& worldFromLocal, const UpdateSettings& settings = {});
 
+    // Refines, within the settings' budget and without motion, the links an
+    // earlier budget left coarse.
+    FrameStats refinePending(const UpdateSettings& settings = {});
+    // The link-update budget that fits a target frame time, from the cost of
+    // link updates measured on the frames so far (sec. 6.1).
+    std::size_t budgetFor(double targetSeconds) const;
+
+    // Consistency check (sec. 6.1): the number of active links that carry the
+    // light from a point of polygon `from` to a point of polygon `to` (each
+    // given by its parametric (u,v), as in HElement::param). A complete
+    // covering of line space has exactly one for every pair of points that
+    // face each other.
+    std::size_t linksCarrying(std::uint32_t from, const glm::dvec2& uvFrom, std::uint32_t to,
+                              const glm::dvec2& uvTo) const;
+
     MeshSnapshot snapshot() const;
     // Leaf radiosity at fixed points of every input polygon (see Sampling.h).
     RadiositySamples samples() const;

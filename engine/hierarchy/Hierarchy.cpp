@@ -243,6 +243,36 @@ void Hierarchy::updateGeometry(ElementId id) {
     if (!elements_[id].isSurface()) finishCluster(id);
 }
 
+namespace {
+
+// Whether uv lies in the convex parametric polygon of an element (edges count).
+bool paramContains(const HElement& e, const glm::dvec2& uv) {
+    for (int k = 0; k < e.patch.n; ++k) {
+        const glm::dvec2 a = e.param[k], b = e.param[(k + 1) % e.patch.n];
+        if ((b.x - a.x) * (uv.y - a.y) - (b.y - a.y) * (uv.x - a.x) < -1e-12) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::vector<ElementId> Hierarchy::pathTo(std::uint32_t polygon, const glm::dvec2& uv) const {
+    std::vector<ElementId> path;
+    for (ElementId e = polygonElements_[polygon]; e != kNone; e = elements_[e].parent) path.push_back(e);
+    std::reverse(path.begin(), path.end());
+    for (ElementId e = polygonElements_[polygon]; !elements_[e].isLeaf();) {
+        ElementId next = kNone;
+        for (ElementId c : elements_[e].children)
+            if (paramContains(elements_[c], uv)) {
+                next = c;
+                break;
+            }
+        if (next == kNone) break;
+        path.push_back(e = next);
+    }
+    return path;
+}
+
 void Hierarchy::refreshAncestors(ElementId id) {
     for (ElementId a = elements_[id].parent; a != kNone; a = elements_[a].parent) finishCluster(a);
 }

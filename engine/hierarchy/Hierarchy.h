@@ -29,6 +29,11 @@ public:
     // The cluster holding all of one object's polygons.
     ElementId objectCluster(std::uint32_t object) const { return objectClusters_[object]; }
 
+    // The elements holding the point with parametric coordinates uv on an
+    // input polygon (the corners' (u,v) as in HElement::param), from the root
+    // down to the leaf.
+    std::vector<ElementId> pathTo(std::uint32_t polygon, const glm::dvec2& uv) const;
+
     // Surfaces: whether children may be made (each keeps at least minArea).
     bool canSubdivide(ElementId id) const;
     // Makes the four children of a surface leaf (no-op if they exist).

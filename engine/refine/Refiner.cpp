@@ -245,6 +245,17 @@ bool Refiner::wouldRefine(const Link& link) const {
     return bound > settings_.epsilon * settings_.referencePower;
 }
 
+std::size_t Refiner::childCount(const Link& link) const {
+    const auto count = [&](ElementId e) { return h_[e].isSurface() ? std::size_t(4) : h_[e].children.size(); };
+    switch (chooseSplit(link)) {
+        case Split::None: return 0;
+        case Split::Source: return count(link.source);
+        case Split::Receiver: return count(link.receiver);
+        case Split::Both: return count(link.source) * count(link.source);
+    }
+    return 0;
+}
+
 std::vector<std::pair<ElementId, ElementId>> Refiner::childPairs(const Link& link) {
     std::vector<std::pair<ElementId, ElementId>> pairs;
     const ElementId s = link.source, r = link.receiver;

@@ -64,6 +64,9 @@ public:
     std::size_t refineAll();
 
     bool wouldRefine(const Link& link) const;
+    // How many links refining this one would create (before dropping those
+    // that carry nothing): its cost under a budget.
+    std::size_t childCount(const Link& link) const;
     // Subdivides the link's larger element and replaces the link by its
     // line-space children; the link becomes a p-link. Appends the new links.
     void refine(LinkId id, std::vector<LinkId>& created);

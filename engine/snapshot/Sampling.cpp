@@ -24,30 +24,6 @@ std::vector<glm::dvec2> paramSamples(int vertexCount) {
     return uv;
 }
 
-// Whether uv lies in the convex parametric polygon of an element (edges count).
-bool contains(const HElement& e, const glm::dvec2& uv) {
-    for (int k = 0; k < e.patch.n; ++k) {
-        const glm::dvec2 a = e.param[k], b = e.param[(k + 1) % e.patch.n];
-        const double cross = (b.x - a.x) * (uv.y - a.y) - (b.y - a.y) * (uv.x - a.x);
-        if (cross < -1e-12) return false;
-    }
-    return true;
-}
-
-glm::dvec3 leafRadiosity(const Hierarchy& h, ElementId e, const glm::dvec2& uv) {
-    while (!h[e].isLeaf()) {
-        ElementId next = kNone;
-        for (ElementId c : h[e].children)
-            if (contains(h[c], uv)) {
-                next = c;
-                break;
-            }
-        if (next == kNone) break;
-        e = next;
-    }
-    return h[e].radiosity;
-}
-
 }  // namespace
 
 RadiositySamples sampleRadiosity(const Scene& scene, const Hierarchy& hierarchy) {
@@ -57,7 +33,7 @@ RadiositySamples sampleRadiosity(const Scene& scene, const Hierarchy& hierarchy)
         const std::vector<glm::dvec2> uv = paramSamples(scene.polygons[p].vertexCount);
         const double w = scene.polygons[p].area() / static_cast<double>(uv.size());
         for (const glm::dvec2& s : uv) {
-            out.luminance.push_back(top == kNone ? 0.0 : luminance(leafRadiosity(hierarchy, top, s)));
+            out.luminance.push_back(top == kNone ? 0.0 : luminance(hierarchy[hierarchy.pathTo(p, s).back()].radiosity));
             out.weight.push_back(w);
         }
     }

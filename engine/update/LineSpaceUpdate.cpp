@@ -35,17 +35,27 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
     candidates_.clear();
     shaftTests_ = 0;
     reinstated_ = 0;
+    budgetReinstated_ = 0;
     linkStamp_.resize(links_.slots(), 0);
+    prunePending();
+    const std::size_t budget = settings.budget.value_or(kUnlimited);
+    stats.budget = budget;
 
-    // 1. Line-space traversal: candidates, reinstated p-links, cleanup.
+    // 1. Line-space traversal: candidates, reinstated p-links, cleanup; under
+    //    a budget, the controlled descent of Fig. 8.
+    visits_.clear();
     findModifiedLinks(h_.root(), h_[h_.root()].range);
+    const std::size_t used = controlledUpdate(0, budget);
     stats.traversalSeconds = since(start);
     stats.shaftTests = shaftTests_;
     stats.reinstated = reinstated_;
+    stats.budgetReinstated = budgetReinstated_;
+    stats.spent = used;
 
-    // 2. Link update with in-place gather, and refinement from a heap.
+    // 2. Link update with in-place gather, and refinement from a heap with
+    //    what is left of the budget.
     auto t = std::chrono::steady_clock::now();
-    updateCandidates(stats);
+    updateCandidates(stats, budget == kUnlimited ? kUnlimited : (budget > used ? budget - used : 0));
     stats.updateSeconds = since(t);
 
     // 3. Partial push-pull, then further bounces where radiosity changed.
@@ -55,10 +65,44 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
     bounce(std::move(visited), settings, stats);
     stats.pushPullSeconds = since(t);
 
+    finish(stats, start);
+    return stats;
+}
+
+void LineSpaceUpdate::prunePending() {
+    std::erase_if(pending_, [&](LinkId id) {
+        return !links_[id].live || links_[id].passive || !refiner_.wouldRefine(links_[id]);
+    });
+    std::sort(pending_.begin(), pending_.end());
+    pending_.erase(std::unique(pending_.begin(), pending_.end()), pending_.end());
+}
+
+void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_point start) const {
     stats.links = 0;
     for (ElementId e = 0; e < h_.size(); ++e) stats.links += h_[e].links.size();
     stats.elements = h_.liveCount();
+    stats.pending = pending_.size();
     stats.totalSeconds = since(start);
+}
+
+FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
+    const auto start = std::chrono::steady_clock::now();
+    FrameStats stats;
+    const std::size_t budget = settings.budget.value_or(kUnlimited);
+    stats.budget = budget;
+    RefineHeap heap;
+    std::vector<LinkId> pending;
+    prunePending();
+    pending.swap(pending_);
+    for (LinkId id : pending) heap.push({heapKey(links_[id]), id});
+    refineFromHeap(heap, stats, budget);
+    stats.updateSeconds = since(start);
+    const auto t = std::chrono::steady_clock::now();
+    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
+    stats.changedElements = visited.size();
+    bounce(std::move(visited), settings, stats);
+    stats.pushPullSeconds = since(t);
+    finish(stats, start);
     return stats;
 }
 
@@ -91,8 +135,9 @@ void LineSpaceUpdate::recompute(LinkId id) {
     }
 }
 
-void LineSpaceUpdate::findModifiedLinks(ElementId he, const IndexRange& ind) {
-    std::vector<IndexRange> descend;  // source ranges whose line-space children lie below
+std::size_t LineSpaceUpdate::findModifiedLinks(ElementId he, const IndexRange& ind) {
+    const std::size_t index = visits_.size();
+    visits_.push_back(Visit{});
     // The affected p-links of he, recomputed together (in parallel) before
     // any is judged: the shaft tests are cheap, the new transfers are not.
     std::vector<LinkId> affected;
@@ -101,37 +146,120 @@ void LineSpaceUpdate::findModifiedLinks(ElementId he, const IndexRange& ind) {
         if (ind.contains(h_[q].range) && affectedByMotion(q, he)) affected.push_back(pl);
     }
     tbb::parallel_for(std::size_t(0), affected.size(), [&](std::size_t i) { recompute(affected[i]); });
+    std::vector<LinkId> refining;  // p-links whose line-space children are visited
     for (LinkId pl : affected) {
         const Link& l = links_[pl];
         // A reinstate earlier in this loop may have removed it.
         if (!l.live || !l.passive || l.receiver != he) continue;
         if (refiner_.wouldRefine(l))
-            descend.push_back(h_[l.source].range);
+            refining.push_back(pl);
         else
             reinstate(pl);
     }
-    // Descend once per maximal range: a p-link refined by splitting its
-    // source leaves p-links from q's children on he itself, whose ranges lie
-    // inside q's; visiting the children for each of them again would repeat
-    // the same traversal.
-    std::sort(descend.begin(), descend.end(),
-              [](const IndexRange& a, const IndexRange& b) { return a.first < b.first || (a.first == b.first && a.last > b.last); });
-    std::vector<IndexRange> maximal;
-    for (const IndexRange& r : descend)
-        if (maximal.empty() || !maximal.back().contains(r)) maximal.push_back(r);
-    for (const IndexRange& range : maximal)
-        for (ElementId c : std::vector<ElementId>(h_[he].children)) findModifiedLinks(c, range);
-    checkAddLinks(he, ind);
+    // A reinstate later in the loop may have removed an earlier p-link (one of
+    // its line-space children).
+    std::erase_if(refining, [&](LinkId pl) { return !links_[pl].live || !links_[pl].passive; });
+    const std::size_t own = affected.size() + checkAddLinks(he, ind);
+
+    // Descend once per maximal range: a p-link refined by splitting its source
+    // leaves p-links from q's children on he itself, whose ranges lie inside
+    // q's; visiting the children for each of them again would repeat the same
+    // traversal.
+    std::sort(refining.begin(), refining.end(), [&](LinkId a, LinkId b) {
+        const IndexRange& ra = h_[links_[a].source].range;
+        const IndexRange& rb = h_[links_[b].source].range;
+        return ra.first < rb.first || (ra.first == rb.first && ra.last > rb.last);
+    });
+    std::vector<Group> groups;
+    for (LinkId pl : refining) {
+        const IndexRange& r = h_[links_[pl].source].range;
+        if (groups.empty() || !groups.back().range.contains(r)) groups.push_back(Group{r, {}, 0.0, false, {}, 0});
+        Group& g = groups.back();
+        g.plinks.push_back(pl);
+        g.transfer += heapKey(links_[pl]);
+        // A cluster pair that cannot stand as one link is descended whatever the budget.
+        g.mustDescend = g.mustDescend || !refiner_.admissible(links_[pl].source, he);
+    }
+    std::size_t work = own;
+    for (Group& g : groups) {
+        for (ElementId c : std::vector<ElementId>(h_[he].children)) {
+            // No link from the range on c means no line-space child of it below c.
+            if (linksFrom(c, g.range) == 0) continue;
+            const std::size_t child = findModifiedLinks(c, g.range);
+            g.visits.push_back(child);
+            g.work += visits_[child].work;
+        }
+        work += g.work;
+    }
+    Visit& v = visits_[index];
+    v.own = own;
+    v.work = work;
+    v.groups = std::move(groups);
+    return index;
 }
 
-void LineSpaceUpdate::checkAddLinks(ElementId he, const IndexRange& ind) {
+std::size_t LineSpaceUpdate::controlledUpdate(std::size_t index, std::size_t budget) {
+    Visit& v = visits_[index];
+    // The links of the current node first (Fig. 8): what is above is then up
+    // to date whatever happens below.
+    std::size_t used = v.own;
+    if (budget == kUnlimited || v.work <= budget) return v.work;  // everything below fits
+    std::size_t remaining = budget > used ? budget - used : 0;
+    // The groups that must be descended first, then the largest transfers,
+    // as long as the work pulled up from below fits.
+    std::vector<Group*> order;
+    for (Group& g : v.groups) order.push_back(&g);
+    std::stable_sort(order.begin(), order.end(), [](const Group* a, const Group* b) {
+        return a->mustDescend != b->mustDescend ? a->mustDescend : a->transfer > b->transfer;
+    });
+    std::vector<Group*> descend;
+    for (Group* g : order) {
+        if (g->mustDescend || g->work <= remaining) {
+            descend.push_back(g);
+            continue;
+        }
+        // Not enough budget to go down: the coarser links stand instead (still
+        // a complete covering of line space), refined when budget allows.
+        // Their line-space children, candidates included, go.
+        for (LinkId pl : g->plinks) {
+            if (!links_[pl].live || !links_[pl].passive) continue;
+            reinstate(pl);
+            ++budgetReinstated_;
+            pending_.push_back(pl);
+            ++used;
+        }
+    }
+    remaining = budget > used ? budget - used : 0;
+    std::size_t need = 0;
+    for (const Group* g : descend) need += g->work;
+    for (const Group* g : descend)
+        for (std::size_t child : g->visits) {
+            // Each child gets the part of the budget its pulled-up work calls for.
+            const std::size_t share =
+                need == 0 ? 0 : static_cast<std::size_t>(double(remaining) * double(visits_[child].work) / double(need));
+            used += controlledUpdate(child, share);
+        }
+    return used;
+}
+
+std::size_t LineSpaceUpdate::linksFrom(ElementId e, const IndexRange& sources) const {
+    std::size_t n = 0;
+    for (LinkId id : h_[e].links) n += sources.contains(h_[links_[id].source].range.first);
+    for (LinkId id : h_[e].plinks) n += sources.contains(h_[links_[id].source].range.first);
+    return n;
+}
+
+std::size_t LineSpaceUpdate::checkAddLinks(ElementId he, const IndexRange& ind) {
+    std::size_t added = 0;
     for (LinkId id : h_[he].links) {
         const ElementId s = links_[id].source;
         if (linkStamp_[id] == frame_ || !ind.contains(h_[s].range)) continue;
         if (!affectedByMotion(s, he)) continue;
         linkStamp_[id] = frame_;
         candidates_.push_back(id);
+        ++added;
     }
+    return added;
 }
 
 void LineSpaceUpdate::reinstate(LinkId id) {
@@ -146,6 +274,7 @@ void LineSpaceUpdate::reinstate(LinkId id) {
         if (unlinked) h_.removeChildren(he);
     }
     refiner_.activate(id);
+    linkStamp_[id] = frame_;  // already recomputed: not a candidate again
     ++reinstated_;
 }
 
@@ -165,8 +294,7 @@ bool LineSpaceUpdate::subtreeUnlinked(ElementId e) const {
     return true;
 }
 
-void LineSpaceUpdate::updateCandidates(FrameStats& stats) {
-    // Sec. 5.2: the link with the highest potential power transfer is refined first.
+void LineSpaceUpdate::updateCandidates(FrameStats& stats, std::size_t budget) {
     RefineHeap heap;
     // Drop candidates a reinstate removed; recompute the rest on all cores
     // (each writes only its own link; the geometry and the rays are read-only).
@@ -175,32 +303,62 @@ void LineSpaceUpdate::updateCandidates(FrameStats& stats) {
     for (LinkId id : candidates_) {
         ++stats.candidates;
         if (refiner_.wouldRefine(links_[id])) {
-            heap.push({heapKey(links_[id]), id});
+            double key = heapKey(links_[id]);
+            // Sec. 6.2: the object entering a shaft it did not cut before makes
+            // refinement there more urgent.
+            const Link& l = links_[id];
+            if (!touches(moved_, h_[l.source].range) && !touches(moved_, h_[l.receiver].range)) {
+                const Shaft shaft(h_[l.source].box, h_[l.receiver].box);
+                if (!shaft.intersects(oldBox_)) key *= kEnteringBoost;
+            }
+            heap.push({key, id});
         } else {
             refiner_.regather(id);  // eq. 1
             ++stats.linksUpdated;
         }
     }
-    refineFromHeap(heap, stats);
+    refineFromHeap(heap, stats, budget);
 }
 
-void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats) {
-    // Without a budget every link in the heap is refined: take them all as one
-    // batch (highest transfer first) so the new links are computed in parallel.
+void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats, std::size_t budget) {
+    // Highest transfer first, in batches whose new links are computed in
+    // parallel; a refinement costs the links it creates.
     std::vector<LinkId> batch, created;
+    std::size_t left = budget;
     while (!heap.empty()) {
         batch.clear();
+        std::size_t cost = 0;
         while (!heap.empty()) {
             const LinkId id = heap.top().second;
+            if (!links_[id].live || links_[id].passive) {
+                heap.pop();
+                continue;
+            }
+            const std::size_t c = refiner_.childCount(links_[id]);
+            if (budget != kUnlimited && cost + c > left) break;
             heap.pop();
-            if (links_[id].live && !links_[id].passive) batch.push_back(id);
+            batch.push_back(id);
+            cost += c;
         }
+        if (batch.empty()) break;
         created.clear();
         refiner_.refine(batch, created);  // eq. 2 for the parents, new transfers for the children
         stats.refined += batch.size();
-        stats.linksUpdated += batch.size();
+        stats.linksUpdated += created.size();
+        stats.spent += created.size();
+        if (budget != kUnlimited) left -= std::min(left, created.size());
         for (LinkId c : created)
             if (refiner_.wouldRefine(links_[c])) heap.push({heapKey(links_[c]), c});
+    }
+    // Out of budget: the rest stay at their level with their new form factors
+    // (sec. 5.2), and wait for budget to be refined.
+    while (!heap.empty()) {
+        const LinkId id = heap.top().second;
+        heap.pop();
+        if (!links_[id].live || links_[id].passive) continue;
+        refiner_.regather(id);
+        ++stats.linksUpdated;
+        pending_.push_back(id);
     }
 }
 

@@ -7,7 +7,9 @@
 // ordered by potential power transfer; a partial push-pull (Fig. 7) and
 // further bounces (sec. 5.3.2) finish the frame.
 
+#include <chrono>
 #include <cstddef>
+#include <optional>
 #include <cstdint>
 #include <queue>
 #include <utility>
@@ -32,12 +34,21 @@ struct FrameStats {
     std::size_t reinstated = 0;
     std::size_t refined = 0;
     std::size_t changedElements = 0;  // visited by the partial push-pull
+    std::size_t budget = 0;            // link updates allowed (kUnlimited: no limit)
+    std::size_t budgetReinstated = 0;  // p-links reinstated for lack of budget
+    std::size_t pending = 0;           // links left coarser than the criterion asks
+    std::size_t spent = 0;             // link updates made, in budget units
     std::size_t links = 0;
     std::size_t elements = 0;
     int bounces = 0;
 };
 
+inline constexpr std::size_t kUnlimited = static_cast<std::size_t>(-1);
+
 struct UpdateSettings {
+    // Link updates allowed per frame (sec. 6.1): recomputed links, reinstated
+    // p-links and links created by refinement each count one. None: no limit.
+    std::optional<std::size_t> budget;
     // Further bounces stop when no element's radiosity moved by more than
     // this fraction of the scene's mean emitted radiosity.
     double bounceThreshold = 1e-4;
@@ -58,10 +69,33 @@ public:
     // the visibility of every link the traversal finds are recomputed.
     FrameStats update(const Aabb& oldBox, const Aabb& newBox, const IndexRange& moved,
                       const UpdateSettings& settings, bool layersChanged = false);
+    // Refines, within the budget, the links a budget left coarse, with no
+    // motion (what an idle viewer does between moves).
+    FrameStats refinePending(const UpdateSettings& settings);
+    std::size_t pendingCount() const { return pending_.size(); }
 
 private:
-    void findModifiedLinks(ElementId he, const IndexRange& ind);
-    void checkAddLinks(ElementId he, const IndexRange& ind);
+    // The refining p-links of a node with nested source ranges, descended together.
+    struct Group {
+        IndexRange range;
+        std::vector<LinkId> plinks;
+        double transfer = 0.0;     // their potential transfer: the order under a budget
+        bool mustDescend = false;  // a cluster pair whose point approximation fails
+        std::vector<std::size_t> visits;  // the child visits below
+        std::size_t work = 0;             // link updates below, pulled up
+    };
+    struct Visit {
+        std::size_t own = 0;   // link updates at the node itself
+        std::size_t work = 0;  // own plus everything below
+        std::vector<Group> groups;
+    };
+    // Fig. 6: the first traversal; pulls up the work each p-link's line-space
+    // children call for (sec. 6.1). Returns the index of its visit record.
+    std::size_t findModifiedLinks(ElementId he, const IndexRange& ind);
+    // Fig. 8: the second traversal, within a budget; returns the link updates spent.
+    std::size_t controlledUpdate(std::size_t visit, std::size_t budget);
+    std::size_t checkAddLinks(ElementId he, const IndexRange& ind);
+    std::size_t linksFrom(ElementId e, const IndexRange& sources) const;
     bool affectedByMotion(ElementId s, ElementId r);
     // Recomputes a link's form factor and visibility for the new position.
     void recompute(LinkId id);
@@ -69,9 +103,13 @@ private:
     void removeLineSpaceChildren(ElementId e, const IndexRange& sources, LinkId keep);
     bool subtreeUnlinked(ElementId e) const;
     using RefineHeap = std::priority_queue<std::pair<double, LinkId>>;
-    void updateCandidates(FrameStats& stats);
+    void updateCandidates(FrameStats& stats, std::size_t budget);
     // Sec. 5.2: the link with the highest potential power transfer first.
-    void refineFromHeap(RefineHeap& heap, FrameStats& stats);
+    void refineFromHeap(RefineHeap& heap, FrameStats& stats, std::size_t budget);
+    void prunePending();
+    void finish(FrameStats& stats, std::chrono::steady_clock::time_point start) const;
+    // Sec. 6.2: heap key factor for a link whose shaft the object just entered.
+    static constexpr double kEnteringBoost = 4.0;
     double heapKey(const Link& l) const;
     void bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats);
 
@@ -90,6 +128,9 @@ private:
     std::vector<LinkId> candidates_;
     std::size_t shaftTests_ = 0;
     std::size_t reinstated_ = 0;
+    std::size_t budgetReinstated_ = 0;
+    std::vector<LinkId> pending_;
+    std::vector<Visit> visits_;  // want refining; left coarse by the budget
 };
 
 }  // namespace rad
