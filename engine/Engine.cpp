@@ -229,6 +229,10 @@ std::size_t Engine::linksCarrying(std::uint32_t from, const glm::dvec2& uvFrom, 
     return count;
 }
 
+EnergyBalance Engine::energy() const { return state_->solver.energy(); }
+MemoryStats Engine::memory() const { return {state_->hierarchy.memoryBytes(), state_->links.memoryBytes()}; }
+std::size_t Engine::linkCount() const { return state_->links.liveCount(); }
+
 RadiositySamples Engine::samples() const { return sampleRadiosity(state_->scene, state_->hierarchy); }
 
 MeshSnapshot Engine::snapshot() const { return makeRadiositySnapshot(state_->scene, state_->hierarchy); }

@@ -99,6 +99,11 @@ public:
     std::size_t linksCarrying(std::uint32_t from, const glm::dvec2& uvFrom, std::uint32_t to,
                               const glm::dvec2& uvTo) const;
 
+    // The power balance and the memory of the current solution (after moves too).
+    EnergyBalance energy() const;
+    MemoryStats memory() const;
+    std::size_t linkCount() const;  // active links and p-links
+
     MeshSnapshot snapshot() const;
     // Leaf radiosity at fixed points of every input polygon (see Sampling.h).
     RadiositySamples samples() const;
