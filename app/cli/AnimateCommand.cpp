@@ -1,19 +1,16 @@
 // radiosity-cli animate: solve, then move the dynamic object in N equal
-// steps with the line-space update, reporting each frame; optionally against
-// a from-scratch solve of every frame.
+// steps with the line-space update, reporting each frame; optionally under a
+// link-update budget or a target frame rate, and against a from-scratch
+// solve of every frame.
 
 #include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
-
-#include "Engine.h"
+#include "cli/Animation.h"
 #include "cli/Args.h"
 #include "cli/Commands.h"
 #include "cli/EngineOptions.h"
@@ -26,18 +23,17 @@ namespace {
 
 const std::vector<OptionSpec>& animateOptions() {
     static const std::vector<OptionSpec> options = [] {
-        std::vector<OptionSpec> o{
-            {"--object", "NAME", "the object to move (marked dynamic in the scene; required)"},
-            {"--frames", "N", "number of equal steps of the motion, 1..100000 (required)"},
-            {"--translate", "X,Y,Z", "total translation in metres (repeatable, summed)"},
-            {"--rotate", "AX,AY,AZ,DEG", "total rotation about the axis through the object's bounding-box centre (repeatable)"},
+        std::vector<OptionSpec> o = motionOptions();
+        o.insert(o.end(), {
+            {"--budget", "LINKS", "link updates allowed per frame, or inf (default: no limit)"},
+            {"--target-fps", "F", "set each frame's budget from this frame rate (not with --budget)"},
             {"--compare-full", "", "also solve every frame from scratch and report the error against it"},
             {"--report", "R.json", "write per-frame figures as JSON"},
             {"--images", "DIR", "write DIR/frame-NNNN.png for the start (0000) and every frame"},
             {"--size", "WxH", "image size (default 512 high, the camera's aspect)"},
             {"--exposure", "EV", "PNG brightness: multiply by 2^EV (default 0)"},
             {"--force", "", "overwrite existing output files"},
-        };
+        });
         const auto& e = engineOptions();
         o.insert(o.end(), e.begin(), e.end());
         return o;
@@ -48,34 +44,52 @@ const std::vector<OptionSpec>& animateOptions() {
 void printAnimateHelp() {
     std::printf(
         "usage: radiosity-cli animate SCENE --object NAME --frames N (--translate X,Y,Z | --rotate AX,AY,AZ,DEG)...\n"
-        "                             [--compare-full] [--report R.json] [--images DIR] [--size WxH]\n"
+        "                             [--budget LINKS | --target-fps F] [--compare-full] [--report R.json]\n"
+        "                             [--images DIR] [--size WxH]\n"
         "Solves SCENE, then applies the total motion in N equal steps to the object,\n"
         "updating the solution through the line-space hierarchy after each step.\n"
         "Rotations turn about the object's bounding-box centre at the start.\n\n%s",
         formatOptions(animateOptions()).c_str());
 }
 
-struct Rotation {
-    glm::dvec3 axis;
-    double degrees;
-};
-
-// The object's transform at fraction f of the motion.
-glm::dmat4 motionAt(double f, const glm::dvec3& translation, const std::vector<Rotation>& rotations,
-                    const glm::dvec3& center, const glm::dmat4& start) {
-    glm::dmat4 m = glm::translate(glm::dmat4(1.0), f * translation + center);
-    for (const Rotation& r : rotations) m = m * glm::rotate(glm::dmat4(1.0), glm::radians(f * r.degrees), r.axis);
-    return glm::translate(m, -center) * start;
-}
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-double secondsSince(std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+void writeFrame(JsonWriter& j, int f, const FrameRecord& r) {
+    const FrameStats& st = r.stats;
+    j.beginObject();
+    j.value("frame", f);
+    j.beginObject("seconds");
+    j.value("traversal", st.traversalSeconds);
+    j.value("update", st.updateSeconds);
+    j.value("push_pull", st.pushPullSeconds);
+    j.value("total", st.totalSeconds);
+    j.endObject();
+    if (st.budget == kUnlimited)
+        j.null("budget");
+    else
+        j.value("budget", st.budget);
+    if (r.targetSeconds)
+        j.value("target_seconds", *r.targetSeconds);
+    else
+        j.null("target_seconds");
+    j.value("spent", st.spent);
+    j.value("shaft_tests", st.shaftTests);
+    j.value("candidates", st.candidates);
+    j.value("links_updated", st.linksUpdated);
+    j.value("reinstated", st.reinstated);
+    j.value("budget_reinstated", st.budgetReinstated);
+    j.value("refined", st.refined);
+    j.value("pending", st.pending);
+    j.value("changed_elements", st.changedElements);
+    j.value("bounces", st.bounces);
+    j.value("links", st.links);
+    j.value("elements", st.elements);
+    if (r.error) {
+        j.value("full_solve_seconds", *r.fullSolveSeconds);
+        j.beginObject("error_vs_full");
+        j.value("rms", r.error->rms);
+        j.value("max", r.error->max);
+        j.endObject();
+    }
+    j.endObject();
 }
 
 }  // namespace
@@ -88,24 +102,15 @@ int runAnimate(const std::vector<std::string>& argv) {
     }
     requirePositionals(args, {"SCENE"});
     const std::string scenePath = args.positionals[0];
-    const std::optional<std::string> objectName = args.value("--object");
-    if (!objectName) throw UsageError("animate needs --object NAME");
-    if (!args.value("--frames")) throw UsageError("animate needs --frames N");
-    const int frames = static_cast<int>(parseInteger("--frames", *args.value("--frames"), 1, 100000));
-    glm::dvec3 translation(0.0);
-    for (const std::string& t : args.all("--translate")) {
-        const auto v = parseNumbers("--translate", t, 3);
-        translation += glm::dvec3(v[0], v[1], v[2]);
+    const MotionRequest request = motionFrom(args);
+    BudgetControlSetting control;
+    if (args.has("--budget") && args.has("--target-fps"))
+        throw UsageError("--budget and --target-fps exclude each other");
+    if (auto b = args.value("--budget")) control.budget = parseBudget("--budget", *b);
+    if (auto f = args.value("--target-fps")) {
+        control.targetFps = parseDouble("--target-fps", *f);
+        if (!(*control.targetFps > 0.0)) throw UsageError("--target-fps: must be > 0, got '" + *f + "'");
     }
-    std::vector<Rotation> rotations;
-    for (const std::string& r : args.all("--rotate")) {
-        const auto v = parseNumbers("--rotate", r, 4);
-        const glm::dvec3 axis(v[0], v[1], v[2]);
-        if (!(glm::length(axis) > 0.0)) throw UsageError("--rotate: the axis must not be zero, got '" + r + "'");
-        rotations.push_back({glm::normalize(axis), v[3]});
-    }
-    if (args.all("--translate").empty() && rotations.empty())
-        throw UsageError("animate needs a motion: --translate X,Y,Z and/or --rotate AX,AY,AZ,DEG");
     const EngineSettings settings = engineSettingsFrom(args);
     const bool force = args.has("--force"), compare = args.has("--compare-full");
     const std::optional<std::string> report = args.value("--report"), images = args.value("--images");
@@ -117,87 +122,51 @@ int runAnimate(const std::vector<std::string>& argv) {
         std::filesystem::create_directories(*images);
         checkWritable((std::filesystem::path(*images) / "frame-0000.png").string(), force);
     }
-
     if (!std::filesystem::exists(scenePath)) throw std::runtime_error(scenePath + ": no such file");
-    Engine engine(loadGltf(scenePath), settings);
-    const auto object = engine.scene().findObject(*objectName);
-    if (!object) throw std::runtime_error(scenePath + ": no object named '" + *objectName + "'");
-    const auto solveStart = std::chrono::steady_clock::now();
-    engine.solve([&](const std::string& line) {
-        if (secondsSince(solveStart) > 1.0) std::fprintf(stderr, "solve: %s\n", line.c_str());
-    });
-    const double solveSeconds = secondsSince(solveStart);
-    if (!engine.stats().converged) throw std::runtime_error("the initial solve did not converge: " + engine.stats().message);
-    engine.setDynamicObject(*objectName);
-    const glm::dmat4 start = engine.scene().objects[*object].worldFromLocal;
-    const glm::dvec3 center = engine.scene().objectBounds(*object).center();
+    const Scene scene = loadGltf(scenePath);
 
-    auto writeFrame = [&](int frame) {
-        if (!images) return;
-        char name[32];
-        std::snprintf(name, sizeof name, "frame-%04d.png", frame);
-        const std::string path = (std::filesystem::path(*images) / name).string();
-        checkWritable(path, force);
-        renderToFile(engine.scene(), engine.snapshot(), ImageRequest{path, size, exposure});
-    };
-    writeFrame(0);
+    References references;
+    const AnimationRun run = runAnimation(
+        scene, settings, request.object, request.motion, request.frames, control, compare ? &references : nullptr,
+        [&](int f, const Engine& engine, const FrameRecord* record) {
+            if (record) {
+                const FrameStats& st = record->stats;
+                std::printf("frame %d: %.3f s (traversal %.3f, update %.3f, push-pull %.3f), %zu candidates, %zu refined\n",
+                            f, st.totalSeconds, st.traversalSeconds, st.updateSeconds, st.pushPullSeconds,
+                            st.candidates, st.refined);
+            }
+            if (!images) return;
+            char name[32];
+            std::snprintf(name, sizeof name, "frame-%04d.png", f);
+            const std::string path = (std::filesystem::path(*images) / name).string();
+            checkWritable(path, force);
+            renderToFile(engine.scene(), engine.snapshot(), ImageRequest{path, size, exposure});
+        });
 
     JsonWriter j;
     j.beginObject();
     j.value("scene", scenePath);
-    j.value("object", *objectName);
-    j.value("frames_requested", frames);
+    j.value("object", request.object);
+    j.value("frames_requested", request.frames);
     j.value("epsilon", settings.epsilon);
     j.beginObject("initial");
-    j.value("seconds", solveSeconds);
-    j.value("links", engine.stats().links);
-    j.value("passive_links", engine.stats().passiveLinks);
-    j.value("elements", engine.stats().elements);
+    j.value("seconds", run.solveSeconds);
+    j.value("links", run.initial.links);
+    j.value("passive_links", run.initial.passiveLinks);
+    j.value("elements", run.initial.elements);
     j.endObject();
     j.beginArray("frames");
     std::vector<double> totals, fullTimes, errors;
-    for (int f = 1; f <= frames; ++f) {
-        const glm::dmat4 m = motionAt(double(f) / frames, translation, rotations, center, start);
-        const FrameStats st = engine.moveDynamicObject(m);
-        totals.push_back(st.totalSeconds);
-        j.beginObject();
-        j.value("frame", f);
-        j.beginObject("seconds");
-        j.value("traversal", st.traversalSeconds);
-        j.value("update", st.updateSeconds);
-        j.value("push_pull", st.pushPullSeconds);
-        j.value("total", st.totalSeconds);
-        j.endObject();
-        j.value("shaft_tests", st.shaftTests);
-        j.value("candidates", st.candidates);
-        j.value("links_updated", st.linksUpdated);
-        j.value("reinstated", st.reinstated);
-        j.value("refined", st.refined);
-        j.value("changed_elements", st.changedElements);
-        j.value("bounces", st.bounces);
-        j.value("links", st.links);
-        j.value("elements", st.elements);
-        std::printf("frame %d: %.3f s (traversal %.3f, update %.3f, push-pull %.3f), %zu candidates, %zu refined",
-                    f, st.totalSeconds, st.traversalSeconds, st.updateSeconds, st.pushPullSeconds, st.candidates,
-                    st.refined);
-        if (compare) {
-            const auto t = std::chrono::steady_clock::now();
-            Engine full(engine.scene(), settings);
-            full.solve();
-            const double fullSeconds = secondsSince(t);
-            const SolutionError e = compareSamples(engine.samples(), full.samples());
-            fullTimes.push_back(fullSeconds);
-            errors.push_back(e.rms);
-            j.value("full_solve_seconds", fullSeconds);
-            j.beginObject("error_vs_full");
-            j.value("rms", e.rms);
-            j.value("max", e.max);
-            j.endObject();
-            std::printf(", full solve %.2f s, error rms %.4f max %.4f", fullSeconds, e.rms, e.max);
+    for (std::size_t i = 0; i < run.frames.size(); ++i) {
+        const FrameRecord& r = run.frames[i];
+        writeFrame(j, int(i) + 1, r);
+        totals.push_back(r.stats.totalSeconds);
+        if (r.error) {
+            fullTimes.push_back(*r.fullSolveSeconds);
+            errors.push_back(r.error->rms);
+            std::printf("frame %zu: full solve %.2f s, error rms %.4f max %.4f\n", i + 1, *r.fullSolveSeconds,
+                        r.error->rms, r.error->max);
         }
-        std::printf("\n");
-        j.endObject();
-        writeFrame(f);
     }
     j.endArray();
     j.beginObject("summary");
@@ -214,7 +183,7 @@ int runAnimate(const std::vector<std::string>& argv) {
         writeFileAtomically(*report, j.str());
         std::printf("wrote %s\n", report->c_str());
     }
-    if (images) std::printf("wrote %d images in %s\n", frames + 1, images->c_str());
+    if (images) std::printf("wrote %d images in %s\n", request.frames + 1, images->c_str());
     return kExitOk;
 }
 

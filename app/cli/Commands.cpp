@@ -41,6 +41,8 @@ const std::vector<CommandInfo>& commands() {
         {"solve", "SCENE [options]", "solve a scene's radiosity; report, image and glTF export", &runSolve},
         {"animate", "SCENE --object NAME --frames N (--translate|--rotate)...",
          "move an object in steps, updating through the line-space hierarchy", &runAnimate},
+        {"sweep", "SCENE --object NAME --frames N (--translate|--rotate)... --out DIR",
+         "the speed/accuracy trade of budgets and target frame rates", &runSweep},
     };
     return table;
 }

@@ -38,4 +38,8 @@ int runSolve(const std::vector<std::string>& args);
 //                       [--compare-full] [--report R.json] [--images DIR] [--size WxH]
 int runAnimate(const std::vector<std::string>& args);
 
+// radiosity-cli sweep SCENE --object NAME --frames N (--translate | --rotate)... [--budgets ...]
+//                     [--target-fps ...] --out DIR
+int runSweep(const std::vector<std::string>& args);
+
 }  // namespace rad::cli

@@ -98,6 +98,12 @@ JsonWriter& JsonWriter::value(const std::string& key, long long v) {
     return *this;
 }
 
+JsonWriter& JsonWriter::null(const std::string& key) {
+    prefix(key);
+    out_ += "null";
+    return *this;
+}
+
 JsonWriter& JsonWriter::value(const std::string& key, bool v) {
     prefix(key);
     out_ += v ? "true" : "false";

@@ -20,6 +20,7 @@ public:
     JsonWriter& value(const std::string& key, bool v);
     JsonWriter& value(const std::string& key, const std::string& v);
     JsonWriter& value(const std::string& key, const char* v) { return value(key, std::string(v)); }
+    JsonWriter& null(const std::string& key);
     // Array elements (no key).
     JsonWriter& element(double v) { return value(std::string(), v); }
 

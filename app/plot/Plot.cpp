@@ -852,6 +852,31 @@ void writeChart(const Chart& chart, const std::string& pathWithoutExtension) {
     writeImage(toImage(chart), pathWithoutExtension + ".png");
 }
 
+void writeCharts(const std::vector<Chart>& charts, const std::string& pathWithoutExtension, int width, int height) {
+    // SVG: each chart nested at its offset, with its own clip-path id.
+    std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width * int(charts.size())) +
+                      "\" height=\"" + std::to_string(height) + "\">\n";
+    Image image;
+    image.width = width * int(charts.size());
+    image.height = height;
+    image.rgb.assign(std::size_t(image.width) * height * 3, 1.0f);
+    for (std::size_t i = 0; i < charts.size(); ++i) {
+        std::string one = toSvg(charts[i], width, height);
+        const std::string id = "plot-area-" + std::to_string(i);
+        for (std::size_t at; (at = one.find("\"plot-area\"")) != std::string::npos;) one.replace(at, 11, "\"" + id + "\"");
+        for (std::size_t at; (at = one.find("url(#plot-area)")) != std::string::npos;) one.replace(at, 15, "url(#" + id + ")");
+        one.insert(4, " x=\"" + std::to_string(width * int(i)) + "\"");
+        svg += one;
+        const Image part = toImage(charts[i], width, height);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                for (int c = 0; c < 3; ++c) image.pixel(int(i) * width + x, y)[c] = part.pixel(x, y)[c];
+    }
+    svg += "</svg>\n";
+    cli::writeFileAtomically(pathWithoutExtension + ".svg", svg);
+    writeImage(image, pathWithoutExtension + ".png");
+}
+
 std::optional<std::array<double, 2>> dataToPixel(const Chart& chart, double x, double y, int width, int height) {
     const Layout l = computeLayout(chart, width, height);
     const auto tx = l.x.transform(x), ty = l.y.transform(y);

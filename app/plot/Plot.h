@@ -37,6 +37,9 @@ Image toImage(const Chart& chart, int width = 800, int height = 500);
 
 // Writes pathWithoutExtension + ".svg" and + ".png", each atomically.
 void writeChart(const Chart& chart, const std::string& pathWithoutExtension);
+// Several charts side by side in one .svg and one .png.
+void writeCharts(const std::vector<Chart>& charts, const std::string& pathWithoutExtension, int width = 800,
+                 int height = 500);
 
 // Where the data point (x, y) lands in toSvg/toImage of the same size, in
 // pixels from the top-left corner; nullopt when it is not drawable (non-finite,

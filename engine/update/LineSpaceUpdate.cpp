@@ -177,8 +177,12 @@ std::size_t LineSpaceUpdate::findModifiedLinks(ElementId he, const IndexRange& i
         Group& g = groups.back();
         g.plinks.push_back(pl);
         g.transfer += heapKey(links_[pl]);
-        // A cluster pair that cannot stand as one link is descended whatever the budget.
-        g.mustDescend = g.mustDescend || !refiner_.admissible(links_[pl].source, he);
+        // Links with a cluster end are descended whatever the budget: the
+        // isotropic cluster approximation would stand in for a whole refined
+        // subtree and lose (or make) light where clusters are not isotropic
+        // (measured on the Cornell box: a third of the absorbed power). Only
+        // surface pairs, whose form factors are accurate, become coarser.
+        g.mustDescend = g.mustDescend || !h_[links_[pl].source].isSurface() || !h_[he].isSurface();
     }
     std::size_t work = own;
     for (Group& g : groups) {

@@ -80,7 +80,7 @@ private:
         IndexRange range;
         std::vector<LinkId> plinks;
         double transfer = 0.0;     // their potential transfer: the order under a budget
-        bool mustDescend = false;  // a cluster pair whose point approximation fails
+        bool mustDescend = false;  // a p-link with a cluster end: never reinstated for budget
         std::vector<std::size_t> visits;  // the child visits below
         std::size_t work = 0;             // link updates below, pulled up
     };

@@ -1,0 +1,76 @@
+#pragma once
+// Running a scripted motion through the engine: what `animate` and `sweep`
+// share. The total motion is applied in N equal steps.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "Engine.h"
+#include "cli/Args.h"
+
+namespace rad::cli {
+
+struct Motion {
+    glm::dvec3 translation{0.0};
+    struct Rotation {
+        glm::dvec3 axis;  // unit
+        double degrees;
+    };
+    std::vector<Rotation> rotations;  // about the object's bounding-box centre at the start
+    // The object's transform at fraction f of the motion.
+    glm::dmat4 at(double f, const glm::dvec3& center, const glm::dmat4& start) const;
+};
+
+// How the link-update budget of each frame is set: none (unlimited), a fixed
+// number of link updates, or from a target frame rate (sec. 6.1).
+struct BudgetControlSetting {
+    std::optional<std::size_t> budget;
+    std::optional<double> targetFps;
+};
+
+struct FrameRecord {
+    FrameStats stats;
+    std::optional<double> targetSeconds;
+    std::optional<double> fullSolveSeconds;
+    std::optional<SolutionError> error;  // against a from-scratch solve of the frame
+};
+
+struct AnimationRun {
+    double solveSeconds = 0.0;
+    SolveStats initial;
+    std::vector<FrameRecord> frames;
+};
+
+// Reference solutions of each frame, computed once and shared by runs of the
+// same motion at the same settings.
+struct References {
+    std::vector<RadiositySamples> samples;
+    std::vector<double> seconds;
+};
+
+// Solves `scene`, chooses `object` as the dynamic object and plays the motion.
+// With `references` (empty on the first call, filled by it) every frame is
+// compared with a from-scratch solve. `onFrame` sees the engine after each
+// frame, with its record (frame 0: the initial solution, no record). Throws on bad input.
+AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::string& object,
+                          const Motion& motion, int frames, const BudgetControlSetting& control,
+                          References* references, const std::function<void(int, const Engine&, const FrameRecord*)>& onFrame = {});
+
+double median(std::vector<double> values);
+
+// --object, --frames, --translate, --rotate: shared by animate and sweep.
+const std::vector<OptionSpec>& motionOptions();
+struct MotionRequest {
+    std::string object;
+    int frames = 0;
+    Motion motion;
+};
+MotionRequest motionFrom(const ParsedArgs& args);
+// "inf" or a count of link updates.
+std::optional<std::size_t> parseBudget(const std::string& option, const std::string& text);
+
+}  // namespace rad::cli
