@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -58,6 +59,49 @@ TEST(CliAnimate, BadArgumentsFailWithOneLine) {
     r = runCli("animate " + shellQuote(kCornell) + " --object nobody --frames 1 --translate 0,0.1,0");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("nobody"), std::string::npos) << r.output;
+}
+
+TEST(CliAnimate, BudgetAndTargetFrameRateAreReported) {
+    test::TempDir dir;
+    const std::string fixed = (dir / "b.json").string(), paced = (dir / "f.json").string();
+    auto r = runCli("animate " + shellQuote(kCornell) + " --object short-block --frames 2 --translate 0,0,0.1 --budget 0"
+                    " --report " + shellQuote(fixed));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::string json = test::readFile(fixed);
+    EXPECT_EQ(jsonNumber(json, "budget", json.find("\"frame\": 2")), 0.0);
+    EXPECT_NE(json.find("\"target_seconds\": null"), std::string::npos);
+    r = runCli("animate " + shellQuote(kCornell) + " --object short-block --frames 2 --translate 0,0,0.1 --target-fps 30"
+               " --report " + shellQuote(paced));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    json = test::readFile(paced);
+    EXPECT_NEAR(jsonNumber(json, "target_seconds"), 1.0 / 30.0, 1e-12);
+    EXPECT_GE(jsonNumber(json, "budget", json.find("\"frame\": 1")), 0.0);
+    r = runCli("animate " + shellQuote(kCornell) + " --object short-block --frames 2 --translate 0,0,0.1 --budget 3"
+               " --target-fps 30");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.output.find("exclude"), std::string::npos) << r.output;
+}
+
+TEST(CliSweep, WritesTheTradeTablesAndPlot) {
+    test::TempDir dir;
+    const std::string out = (dir / "sweep").string();
+    const auto r = runCli("sweep " + shellQuote(kCornell) +
+                          " --object short-block --frames 2 --translate 0,0,0.1 --budgets 0,inf --target-fps 30"
+                          " --out " + shellQuote(out));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char* name : {"trade.json", "trade.csv", "trade.png", "trade.svg"})
+        EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / name)) << name;
+    const std::string csv = test::readFile(out + "/trade.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);  // header and three runs
+    EXPECT_NE(csv.find("budget,inf,"), std::string::npos);
+    const std::string json = test::readFile(out + "/trade.json");
+    // Without a budget the update matches the full solve within 1%; with
+    // budget 0 it is coarser, never better.
+    const double unlimited = jsonNumber(json, "median_rms", json.find("\"budget\": null"));
+    const double none = jsonNumber(json, "median_rms", json.find("\"budget\": 0"));
+    EXPECT_LE(unlimited, 0.01);
+    EXPECT_GE(none, unlimited);
+    EXPECT_NE(test::readFile(out + "/trade.svg").find("Achieved against target"), std::string::npos);
 }
 
 }  // namespace
