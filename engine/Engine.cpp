@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <sstream>
 
@@ -235,7 +236,26 @@ std::size_t Engine::linkCount() const { return state_->links.liveCount(); }
 
 RadiositySamples Engine::samples() const { return sampleRadiosity(state_->scene, state_->hierarchy); }
 
-MeshSnapshot Engine::snapshot() const { return makeRadiositySnapshot(state_->scene, state_->hierarchy); }
+MeshSnapshot Engine::snapshot(SnapshotOverlays overlays) const {
+    MeshSnapshot mesh = makeRadiositySnapshot(state_->scene, state_->hierarchy);
+    auto add = [&](const std::vector<std::array<glm::dvec3, 2>>& segments, const glm::vec3& color) {
+        for (const auto& seg : segments)
+            for (const glm::dvec3& p : seg) {
+                mesh.linePositions.emplace_back(p);
+                mesh.lineColors.push_back(color);
+            }
+    };
+    if (overlays.modifiedLinks) add(state_->updater.modifiedLinks(), glm::vec3(1.0f, 0.85f, 0.1f));
+    if (overlays.changedElements) add(state_->updater.changedOutlines(), glm::vec3(1.0f, 0.1f, 0.1f));
+    return mesh;
+}
+
+std::optional<std::uint32_t> Engine::pick(const glm::dvec3& origin, const glm::dvec3& direction) const {
+    const State& s = *state_;
+    const auto hit = s.rays.intersect(origin, direction, std::numeric_limits<double>::infinity());
+    if (!hit) return std::nullopt;
+    return s.scene.polygons[hit->polygon].object;
+}
 
 std::vector<ObjectRadiosity> Engine::objectRadiosity() const {
     std::vector<ObjectRadiosity> out;

@@ -56,6 +56,11 @@ struct ObjectRadiosity {
     glm::dvec3 radiosity{0.0};  // area-weighted mean B over its surfaces
 };
 
+struct SnapshotOverlays {
+    bool modifiedLinks = false;
+    bool changedElements = false;
+};
+
 class Engine {
 public:
     // Throws SceneError for a scene that cannot be solved (nothing emits) and
@@ -104,7 +109,13 @@ public:
     MemoryStats memory() const;
     std::size_t linkCount() const;  // active links and p-links
 
-    MeshSnapshot snapshot() const;
+    // The lit mesh; with overlays, also the links the last move modified
+    // (yellow lines between the centres of their H-elements) and the outlines
+    // of the elements it marked changed (red), in MeshSnapshot's lines.
+    MeshSnapshot snapshot(SnapshotOverlays overlays = {}) const;
+
+    // The object whose surface a ray meets first (for picking), or nullopt.
+    std::optional<std::uint32_t> pick(const glm::dvec3& origin, const glm::dvec3& direction) const;
     // Leaf radiosity at fixed points of every input polygon (see Sampling.h).
     RadiositySamples samples() const;
     std::vector<ObjectRadiosity> objectRadiosity() const;

@@ -33,6 +33,7 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
     moved_ = moved;
     layersChanged_ = layersChanged;
     candidates_.clear();
+    modified_.clear();
     shaftTests_ = 0;
     reinstated_ = 0;
     budgetReinstated_ = 0;
@@ -62,11 +63,31 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
     t = std::chrono::steady_clock::now();
     std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
     stats.changedElements = visited.size();
+    recordOverlay(visited);
     bounce(std::move(visited), settings, stats);
     stats.pushPullSeconds = since(t);
 
     finish(stats, start);
     return stats;
+}
+
+void LineSpaceUpdate::recordOverlay(const std::vector<ElementId>& changed) {
+    // Bounded: a display of more segments than this says nothing more.
+    constexpr std::size_t kMaxSegments = 200'000;
+    modifiedSegments_.clear();
+    changedSegments_.clear();
+    modified_.insert(modified_.end(), candidates_.begin(), candidates_.end());
+    for (LinkId id : modified_) {
+        if (modifiedSegments_.size() >= kMaxSegments) break;
+        const Link& l = links_[id];
+        if (!l.live) continue;
+        modifiedSegments_.push_back({h_[l.source].center, h_[l.receiver].center});
+    }
+    for (ElementId e : changed) {
+        const HElement& el = h_[e];
+        if (!el.isSurface() || changedSegments_.size() >= kMaxSegments) continue;
+        for (int k = 0; k < el.patch.n; ++k) changedSegments_.push_back({el.patch.v[k], el.patch.v[(k + 1) % el.patch.n]});
+    }
 }
 
 void LineSpaceUpdate::prunePending() {
@@ -278,6 +299,7 @@ void LineSpaceUpdate::reinstate(LinkId id) {
         if (unlinked) h_.removeChildren(he);
     }
     refiner_.activate(id);
+    modified_.push_back(id);
     linkStamp_[id] = frame_;  // already recomputed: not a candidate again
     ++reinstated_;
 }
@@ -347,6 +369,7 @@ void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats, std::s
         if (batch.empty()) break;
         created.clear();
         refiner_.refine(batch, created);  // eq. 2 for the parents, new transfers for the children
+        modified_.insert(modified_.end(), created.begin(), created.end());
         stats.refined += batch.size();
         stats.linksUpdated += created.size();
         stats.spent += created.size();

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstddef>
 #include <optional>
+#include <array>
 #include <cstdint>
 #include <queue>
 #include <utility>
@@ -74,6 +75,12 @@ public:
     FrameStats refinePending(const UpdateSettings& settings);
     std::size_t pendingCount() const { return pending_.size(); }
 
+    // What the last frame touched, for display (paper Fig. 5 b, c): the links
+    // it modified (the centres of their two H-elements) and the surface
+    // elements the traversal marked changed (their outlines), as segments.
+    const std::vector<std::array<glm::dvec3, 2>>& modifiedLinks() const { return modifiedSegments_; }
+    const std::vector<std::array<glm::dvec3, 2>>& changedOutlines() const { return changedSegments_; }
+
 private:
     // The refining p-links of a node with nested source ranges, descended together.
     struct Group {
@@ -130,7 +137,10 @@ private:
     std::size_t reinstated_ = 0;
     std::size_t budgetReinstated_ = 0;
     std::vector<LinkId> pending_;
-    std::vector<Visit> visits_;  // want refining; left coarse by the budget
+    std::vector<Visit> visits_;
+    std::vector<LinkId> modified_;  // this frame's modified links, for the overlay
+    std::vector<std::array<glm::dvec3, 2>> modifiedSegments_, changedSegments_;
+    void recordOverlay(const std::vector<ElementId>& changed);  // want refining; left coarse by the budget
 };
 
 }  // namespace rad
