@@ -99,6 +99,7 @@ Engine::Engine(Scene scene, const EngineSettings& settings) {
             dynamicObject = o;
             break;
         }
+    s.rays.setFrame(s.scene.bounds());
     s.chooseDynamic(dynamicObject);
     s.stats.polygons = s.scene.polygons.size();
     s.stats.minArea = s.hierarchy.minArea();
@@ -141,8 +142,19 @@ const SolveStats& Engine::solve(const Progress& progress) {
         if (refined == 0) break;
         if (round == s.settings.maxRefineRounds) st.message = "stopped refining after the round limit";
     }
-    if (s.refiner.capReached()) st.message = "refinement stopped at the memory cap of " +
-                                             std::to_string(s.settings.maxLinks) + " links";
+    // Refinement made under an earlier round's radiosity that the final one
+    // no longer asks for goes, and the system is solved once more.
+    if (st.converged && s.updater.reinstateUnneeded() > 0) {
+        const auto t = std::chrono::steady_clock::now();
+        const SolveResult r = s.solver.solve(s.settings.solve);
+        st.solveSeconds += secondsSince(t);
+        st.iterations += r.iterations;
+        st.converged = r.converged;
+    }
+    if (s.refiner.capReached()) {
+        const std::string cap = "refinement stopped at the memory cap of " + std::to_string(s.settings.maxLinks) + " links";
+        st.message = st.message.empty() ? cap : st.message + "; " + cap;
+    }
     st.elements = s.hierarchy.liveCount();
     st.links = st.passiveLinks = 0;
     for (ElementId e = 0; e < s.hierarchy.size(); ++e) {

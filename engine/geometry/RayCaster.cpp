@@ -87,6 +87,13 @@ struct RayCaster::Impl {
 
     RTCDevice device = nullptr;
     LayerData layers[2];
+    // Embree works in float with some absolute tolerances; it sees the scene
+    // moved to the origin and scaled to unit size, so that a millimetre and a
+    // kilometre version of one scene give the same answers. The double
+    // precision filter works in world coordinates.
+    glm::dvec3 origin{0.0};
+    double scale = 1.0;
+    glm::vec3 toEmbree(const glm::dvec3& p) const { return glm::vec3((p - origin) * scale); }
 
     Impl() {
         device = rtcNewDevice(nullptr);
@@ -124,14 +131,16 @@ struct RayCaster::Impl {
         context.tMin = tMargin;
         context.tMax = 1.0 - tMargin;
         RTCRay ray{};
-        ray.org_x = static_cast<float>(a.x);
-        ray.org_y = static_cast<float>(a.y);
-        ray.org_z = static_cast<float>(a.z);
+        const glm::vec3 org = toEmbree(a);
+        const glm::vec3 dir(d * scale);
+        ray.org_x = org.x;
+        ray.org_y = org.y;
+        ray.org_z = org.z;
         // Unnormalised direction: t in [0, 1] spans the segment. The float window is the whole
         // segment; the filter applies the end margins in double.
-        ray.dir_x = static_cast<float>(d.x);
-        ray.dir_y = static_cast<float>(d.y);
-        ray.dir_z = static_cast<float>(d.z);
+        ray.dir_x = dir.x;
+        ray.dir_y = dir.y;
+        ray.dir_z = dir.z;
         ray.tnear = 0.0f;
         ray.tfar = 1.0f;
         ray.mask = std::numeric_limits<unsigned>::max();
@@ -148,6 +157,14 @@ RayCaster::~RayCaster() = default;
 RayCaster::RayCaster(RayCaster&&) noexcept = default;
 RayCaster& RayCaster::operator=(RayCaster&&) noexcept = default;
 
+void RayCaster::setFrame(const Aabb& bounds) {
+    if (bounds.empty()) return;
+    const glm::dvec3 e = bounds.extent();
+    const double size = std::max({e.x, e.y, e.z});
+    impl_->origin = bounds.center();
+    impl_->scale = size > 0.0 ? 1.0 / size : 1.0;
+}
+
 void RayCaster::setLayer(Layer layer, const Scene& scene,
                          std::span<const std::uint32_t> polygonIds) {
     Impl::LayerData fresh;
@@ -161,7 +178,7 @@ void RayCaster::setLayer(Layer layer, const Scene& scene,
         if (p.vertexCount < 3 || p.vertexCount > 4) continue;
         const auto base = static_cast<std::uint32_t>(vertices.size());
         for (int k = 0; k < p.vertexCount; ++k) {
-            vertices.emplace_back(p.vertices[k]);
+            vertices.push_back(impl_->toEmbree(p.vertices[k]));
             fresh.magnitude = std::max(fresh.magnitude, maxAbs(p.vertices[k]));
         }
         // Fan triangulation of a convex polygon.
@@ -238,12 +255,15 @@ std::optional<RayCaster::Hit> RayCaster::intersect(const glm::dvec3& origin,
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRayHit rh{};
-        rh.ray.org_x = static_cast<float>(origin.x);
-        rh.ray.org_y = static_cast<float>(origin.y);
-        rh.ray.org_z = static_cast<float>(origin.z);
-        rh.ray.dir_x = static_cast<float>(direction.x);
-        rh.ray.dir_y = static_cast<float>(direction.y);
-        rh.ray.dir_z = static_cast<float>(direction.z);
+        // Same t as in world space: origin and direction both scaled.
+        const glm::vec3 org = impl_->toEmbree(origin);
+        const glm::vec3 dir(direction * impl_->scale);
+        rh.ray.org_x = org.x;
+        rh.ray.org_y = org.y;
+        rh.ray.org_z = org.z;
+        rh.ray.dir_x = dir.x;
+        rh.ray.dir_y = dir.y;
+        rh.ray.dir_z = dir.z;
         rh.ray.tnear = 0.0f;
         rh.ray.tfar = static_cast<float>(std::min(tmax, double(std::numeric_limits<float>::max())));
         rh.ray.mask = std::numeric_limits<unsigned>::max();

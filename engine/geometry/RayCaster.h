@@ -27,6 +27,9 @@ class RayCaster {
     // std::out_of_range otherwise), triangulated. Static is built once per choice of dynamic
     // object; Dynamic again after each move. Not to be called while queries run.
     void setLayer(Layer layer, const Scene& scene, std::span<const std::uint32_t> polygonIds);
+    // The region the layers live in (the scene's bounds): set before the
+    // layers, it makes the float ray casting independent of the scene's scale.
+    void setFrame(const Aabb& bounds);
 
     // Fraction of the segments from[i] -> to[i] that are NOT blocked in the layer (1 for an empty
     // set). Hits within a small margin of either end are ignored (the segment ends lie on

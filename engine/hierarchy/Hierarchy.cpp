@@ -34,11 +34,21 @@ void splitMedian(std::vector<std::uint32_t>& items, CenterOf centerOf, std::vect
                  std::vector<std::uint32_t>& right) {
     Aabb box;
     for (std::uint32_t i : items) box.extend(centerOf(i));
+    // Positions on a grid relative to the box, ties broken by index: the same
+    // scene at another scale (where rounding moves "equal" values by an ulp)
+    // then splits the same way, and so refines the same way.
     const glm::dvec3 e = box.extent();
-    const int axis = (e.x >= e.y && e.x >= e.z) ? 0 : (e.y >= e.z ? 1 : 2);
+    const double size = std::max({e.x, e.y, e.z});
+    auto grid = [&](double v, int axis) {
+        return size > 0.0 ? std::llround((v - box.lo[axis]) / size * 1e9) : 0LL;
+    };
+    const long long gx = grid(box.hi.x, 0), gy = grid(box.hi.y, 1), gz = grid(box.hi.z, 2);
+    const int axis = (gx >= gy && gx >= gz) ? 0 : (gy >= gz ? 1 : 2);
     const auto mid = items.begin() + static_cast<std::ptrdiff_t>(items.size() / 2);
-    std::nth_element(items.begin(), mid, items.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return centerOf(a)[axis] < centerOf(b)[axis]; });
+    std::nth_element(items.begin(), mid, items.end(), [&](std::uint32_t a, std::uint32_t b) {
+        const long long ka = grid(centerOf(a)[axis], axis), kb = grid(centerOf(b)[axis], axis);
+        return ka != kb ? ka < kb : a < b;
+    });
     left.assign(items.begin(), mid);
     right.assign(mid, items.end());
 }

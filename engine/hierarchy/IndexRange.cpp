@@ -8,10 +8,13 @@ namespace rad {
 int maxQuadtreeDepth(double area, double minArea) {
     if (!(minArea > 0.0) || !(area > 0.0)) return 0;
     int depth = 0;
+    // On the ratio, with a little slack: a child exactly at the threshold
+    // stays allowed when the scene is scaled and rounding moves it by an ulp.
     // Bounded: beyond 40 levels the index count overflows anyway, and the
     // caller reports that; stopping here keeps a zero-ish threshold from looping.
-    while (area / 4.0 >= minArea && depth < 40) {
-        area /= 4.0;
+    double ratio = area / minArea;
+    while (ratio / 4.0 >= 1.0 - 1e-9 && depth < 40) {
+        ratio /= 4.0;
         ++depth;
     }
     return depth;

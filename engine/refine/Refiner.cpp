@@ -82,7 +82,7 @@ bool Refiner::admissible(ElementId s, ElementId r) const {
     if (s == r) return false;
     const double reach = radius(a) + radius(b);
     const glm::dvec3 d = b.center - a.center;
-    return glm::dot(d, d) > reach * reach;
+    return glm::dot(d, d) > reach * reach * (1.0 + 1e-9);
 }
 
 FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const {
@@ -226,7 +226,8 @@ bool Refiner::canSplit(ElementId e) const {
 Refiner::Split Refiner::chooseSplit(const Link& link) const {
     if (link.source == link.receiver) return canSplit(link.source) ? Split::Both : Split::None;
     const bool cs = canSplit(link.source), cr = canSplit(link.receiver);
-    if (cs && cr) return h_[link.source].area > h_[link.receiver].area ? Split::Source : Split::Receiver;
+    // Equal areas (with a little slack, so a scaled scene decides alike): the receiver.
+    if (cs && cr) return h_[link.source].area > h_[link.receiver].area * (1.0 + 1e-9) ? Split::Source : Split::Receiver;
     if (cs) return Split::Source;
     if (cr) return Split::Receiver;
     return Split::None;
@@ -236,13 +237,19 @@ bool Refiner::wouldRefine(const Link& link) const {
     if (chooseSplit(link) == Split::None) return false;
     if (!admissible(link.source, link.receiver)) return true;
     // Partly occluded links are judged by their unoccluded transfer, so that
-    // shadow boundaries get refined.
+    // shadow boundaries get refined. So are links with a cluster end whatever
+    // their visibility: a cluster's few sample points can all lie on faces
+    // hidden from the other end, and a visibility of 0 there must not stop
+    // the refinement that would find the faces that do see it.
     const double v = link.visibility();
-    const double f = (v > 0.0 && v < 1.0) ? link.unoccluded : link.formFactor();
+    const bool clusterEnd = !h_[link.source].isSurface() || !h_[link.receiver].isSurface();
+    const double f = (clusterEnd || (v > 0.0 && v < 1.0)) ? link.unoccluded : link.formFactor();
     // BF, and the same bound on how much the transfer varies across the receiver.
     const double bound = h_[link.source].oracle * h_[link.receiver].area *
                          std::max(f, double(link.spread) * v);
-    return bound > settings_.epsilon * settings_.referencePower;
+    // A little slack: symmetric scenes put many links exactly on the threshold,
+    // and the same scene at another scale must not fall on the other side.
+    return bound > settings_.epsilon * settings_.referencePower * (1.0 + 1e-9);
 }
 
 std::size_t Refiner::childCount(const Link& link) const {

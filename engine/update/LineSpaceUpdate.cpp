@@ -90,6 +90,24 @@ void LineSpaceUpdate::recordOverlay(const std::vector<ElementId>& changed) {
     }
 }
 
+std::size_t LineSpaceUpdate::reinstateUnneeded() {
+    linkStamp_.resize(links_.slots(), 0);
+    const std::size_t before = reinstated_;
+    // Top-down: a reinstated p-link takes its line-space children with it.
+    std::vector<ElementId> stack{h_.root()};
+    while (!stack.empty()) {
+        const ElementId e = stack.back();
+        stack.pop_back();
+        for (LinkId pl : std::vector<LinkId>(h_[e].plinks)) {
+            const Link& l = links_[pl];
+            if (l.live && l.passive && l.receiver == e && !refiner_.wouldRefine(l)) reinstate(pl);
+        }
+        for (ElementId c : h_[e].children) stack.push_back(c);
+    }
+    modified_.clear();
+    return reinstated_ - before;
+}
+
 void LineSpaceUpdate::prunePending() {
     std::erase_if(pending_, [&](LinkId id) {
         return !links_[id].live || links_[id].passive || !refiner_.wouldRefine(links_[id]);

@@ -74,6 +74,11 @@ public:
     // motion (what an idle viewer does between moves).
     FrameStats refinePending(const UpdateSettings& settings);
     std::size_t pendingCount() const { return pending_.size(); }
+    // After a solve: reinstates the p-links the criterion no longer asks for
+    // (their source's radiosity fell after they were refined), so that the
+    // solution is a fixed point of the traversal's decisions and a move that
+    // moves nothing changes nothing. Returns how many.
+    std::size_t reinstateUnneeded();
 
     // What the last frame touched, for display (paper Fig. 5 b, c): the links
     // it modified (the centres of their two H-elements) and the surface

@@ -1,0 +1,237 @@
+// Numerical stability of the solve and the update at the extremes: error
+// thresholds far too coarse or far too fine (memory cap), reflectance near 1,
+// scenes a thousand times smaller or larger, and moves of a micrometre or of
+// a hundred scene sizes.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "Engine.h"
+#include "refine/Refiner.h"  // luminance()
+#include "scene/GltfImport.h"
+#include "support/TestScenes.h"
+
+namespace rad {
+namespace {
+
+using V = glm::dvec3;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+glm::dmat4 translation(V t) { return glm::translate(glm::dmat4(1.0), t); }
+
+bool allFinite(const RadiositySamples& s) {
+    for (double v : s.luminance)
+        if (!std::isfinite(v)) return false;
+    return !s.luminance.empty();
+}
+
+bool finiteEnergy(const EnergyBalance& e) {
+    return std::isfinite(e.emitted) && std::isfinite(e.absorbed) && std::isfinite(e.received) &&
+           std::isfinite(e.reflected) && e.emitted > 0.0;
+}
+
+// The room of line_space_update_test.cpp: a closed 4 x 3 x 4 m room, a light
+// on the ceiling, a dynamic block above the floor; every vertex times `scale`.
+// `blockOffset` moves the block off the light's edge lines and the binary
+// grid of the subdivision.
+Scene roomWithBlock(double scale = 1.0, V blockOffset = V(0.0)) {
+    Scene s;
+    s.sourcePath = "room-with-block";
+    const auto white = test::addMaterial(s, V(0.7), V(0.0), "white");
+    const auto grey = test::addMaterial(s, V(0.5, 0.4, 0.3), V(0.0), "block");
+    const auto light = test::addMaterial(s, V(0.0), V(10.0), "light");
+    const auto faces = test::boxFaces(V(0.0), V(4.0, 3.0, 4.0), true);
+    const char* names[] = {"floor", "ceiling", "wall-x0", "wall-x4", "wall-z0", "wall-z4"};
+    for (int i = 0; i < 6; ++i) test::addQuadObject(s, names[i], white, {faces[i]});
+    test::addQuadObject(s, "light", light,
+                        {{V(1.5, 2.999, 1.5), V(2.5, 2.999, 1.5), V(2.5, 2.999, 2.5), V(1.5, 2.999, 2.5)}});
+    test::addQuadObject(s, "block", grey, test::boxFaces(V(1.5, 0.2, 1.5), V(2.2, 0.9, 2.2), false), true);
+    for (Polygon& p : s.polygons)
+        for (int k = 0; k < p.vertexCount; ++k)
+            p.vertices[k] = scale * (p.vertices[k] + (s.objects[p.object].name == "block" ? blockOffset : V(0.0)));
+    return s;
+}
+
+Scene cornellBox() { return loadGltf(test::sourcePath("scenes/cornell-box.gltf")); }
+
+TEST(Stability, EpsilonExtremes) {
+    const auto start = Clock::now();
+    // Far too coarse: only the links that cluster pairs force are refined.
+    EngineSettings coarse;
+    coarse.epsilon = 10.0;
+    Engine rough(cornellBox(), coarse);
+    const SolveStats& r = rough.solve();
+    std::printf("  epsilon 10: converged %d, %zu links, %zu elements, %d rounds, message '%s'\n", r.converged,
+                rough.linkCount(), r.elements, r.refineRounds, r.message.c_str());
+    EXPECT_TRUE(r.converged) << r.message;
+    EXPECT_TRUE(allFinite(rough.samples()));
+    EXPECT_TRUE(finiteEnergy(rough.energy()));
+    EngineSettings normal;
+    normal.epsilon = 1e-3;
+    Engine reference(cornellBox(), normal);
+    ASSERT_TRUE(reference.solve().converged);
+    EXPECT_LT(rough.linkCount(), reference.linkCount());
+
+    // Far too fine: the memory cap stops the refinement.
+    EngineSettings fine;
+    fine.epsilon = 1e-9;
+    fine.maxLinks = 200'000;
+    Engine capped(cornellBox(), fine);
+    const auto t = Clock::now();
+    const SolveStats& c = capped.solve();
+    std::printf("  epsilon 1e-9, cap %zu: converged %d, %zu links (%zu active, %zu passive), %zu elements, "
+                "%d rounds, %.2f s, message '%s'\n",
+                fine.maxLinks, c.converged, capped.linkCount(), c.links, c.passiveLinks, c.elements, c.refineRounds,
+                secondsSince(t), c.message.c_str());
+    EXPECT_NE(c.message.find("cap"), std::string::npos) << c.message;
+    // The cap is checked before each refinement batch (4 links per refined link).
+    EXPECT_LE(capped.linkCount(), fine.maxLinks + fine.maxLinks / 10);
+    EXPECT_TRUE(allFinite(capped.samples()));
+    EXPECT_TRUE(finiteEnergy(capped.energy()));
+    const SolutionError e = compareSamples(capped.samples(), reference.samples());
+    std::printf("  capped vs epsilon 1e-3: rms %.4f; test %.2f s\n", e.rms, secondsSince(start));
+    EXPECT_TRUE(std::isfinite(e.rms));
+}
+
+// Reflectance near 1 needs many sweeps: with too few, the solve must say so,
+// never report a converged wrong answer.
+TEST(Stability, ReflectanceNearOne) {
+    const auto start = Clock::now();
+    for (double rho : {0.99, 0.999}) {
+        for (int maxIterations : {100, 2000, 20000}) {
+            if (rho == 0.99 && maxIterations > 2000) continue;
+            EngineSettings settings;
+            settings.epsilon = 1e-3;
+            settings.minArea = 1e-2;
+            settings.solve.maxIterations = maxIterations;
+            Engine engine(test::closedBox(rho), settings);
+            const SolveStats& st = engine.solve();
+            const double expected = 1.0 / (1.0 - rho);
+            const double b = engine.objectRadiosity()[0].radiosity.x;
+            std::printf("  rho %.3f, at most %d sweeps: converged %d after %d sweeps, B %.3f (exact %.1f, %+.3f%%), "
+                        "message '%s'\n",
+                        rho, maxIterations, st.converged, st.iterations, b, expected, 100.0 * (b / expected - 1.0),
+                        st.message.c_str());
+            EXPECT_TRUE(std::isfinite(b));
+            if (st.converged) {
+                EXPECT_NEAR(b, expected, 0.01 * expected) << "rho " << rho << ": converged to a wrong answer";
+            } else {
+                EXPECT_NE(st.message.find("did not converge"), std::string::npos) << st.message;
+            }
+        }
+    }
+    std::printf("  test %.2f s\n", secondsSince(start));
+}
+
+// KNOWN ENGINE BUG (fails on purpose; see the report): at most scales the
+// block's top face, 2.1 m under the light, gets no direct light (measured mean
+// B 0.033 instead of 0.305; the block's mean 0.098 instead of 0.144 at scale
+// 1e3). splitMedian breaks the ties of the cube's equal extents and face
+// centres by rounding, so the block's sub-clusters, and with them the four
+// visibility sample points of its cluster, depend on the scale; when all 16
+// rays from the light's cluster to the block's cluster samples are blocked
+// (the samples sit on the bottom and side faces), the link light -> block
+// cluster gets visibility 0, Refiner::wouldRefine then judges it by
+// formFactor() == 0 and never refines it. Scale 1 and 2 happen to pass.
+TEST(Stability, ScaleInvariance) {
+    const auto start = Clock::now();
+    const EngineSettings settings;
+    std::vector<ObjectRadiosity> base;
+    std::size_t baseLinks = 0;
+    for (double scale : {1.0, 1e-3, 1e3}) {
+        Engine engine(roomWithBlock(scale), settings);
+        const SolveStats& st = engine.solve();
+        ASSERT_TRUE(st.converged) << "scale " << scale << ": " << st.message;
+        const std::vector<ObjectRadiosity> objects = engine.objectRadiosity();
+        if (scale == 1.0) {
+            base = objects;
+            baseLinks = engine.linkCount();
+            std::printf("  scale 1: %zu links, %zu elements, minArea %.3g\n", baseLinks, st.elements, st.minArea);
+            continue;
+        }
+        ASSERT_EQ(objects.size(), base.size());
+        double worst = 0.0;
+        std::string worstName;
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+            const double ref = luminance(base[i].radiosity);
+            const double d = std::abs(luminance(objects[i].radiosity) - ref) / std::max(ref, 1e-12);
+            if (d > worst) {
+                worst = d;
+                worstName = objects[i].name;
+            }
+            EXPECT_NEAR(luminance(objects[i].radiosity), ref, 1e-3 * ref) << "scale " << scale << ", " << objects[i].name;
+        }
+        std::printf("  scale %g: %zu links (scale 1: %zu), %zu elements, minArea %.3g; largest relative difference "
+                    "%.2e (%s)\n",
+                    scale, engine.linkCount(), baseLinks, st.elements, st.minArea, worst, worstName.c_str());
+    }
+    std::printf("  test %.2f s\n", secondsSince(start));
+}
+
+TEST(Stability, TinyAndHugeMoves) {
+    const auto start = Clock::now();
+    EngineSettings settings;
+    settings.epsilon = 1e-3;
+    // With the block's edges exactly on the light's edge lines and on the
+    // binary subdivision grid (the room of line_space_update_test.cpp), a
+    // micrometre flips visibility rays that pass exactly through its edges
+    // (measured rms 3.5e-4, then 2e-8 for the next micrometre): moved off.
+    Engine engine(roomWithBlock(1.0, V(0.0123, 0.0086, 0.0161)), settings);
+    ASSERT_TRUE(engine.solve().converged);
+    const RadiositySamples solved = engine.samples();
+
+    // A move to where it already is. Engine issue (reported): it is not a
+    // no-op: it reinstates a few p-links that the solve left refined (in the
+    // unshifted room: 3, the block's bottom changes by up to 2.5%, rms 3.5e-4;
+    // here 5, rms 1.9e-4), so the tiny move is compared with the state after it.
+    FrameStats f = engine.moveDynamicObject(glm::dmat4(1.0));
+    const SolutionError null = compareSamples(engine.samples(), solved);
+    std::printf("  no motion: rms %.2e max %.2e (reinstated %zu, refined %zu)\n", null.rms, null.max, f.reinstated,
+                f.refined);
+    const RadiositySamples original = engine.samples();
+
+    // A micrometre.
+    f = engine.moveDynamicObject(translation(V(1e-6, 0.0, 0.0)));
+    const SolutionError tiny = compareSamples(engine.samples(), original);
+    std::printf("  1e-6 m: rms %.2e max %.2e (linksUpdated %zu, refined %zu); vs the solve rms %.2e\n", tiny.rms,
+                tiny.max, f.linksUpdated, f.refined, compareSamples(engine.samples(), solved).rms);
+    EXPECT_LT(tiny.rms, 1e-4);
+    ASSERT_TRUE(allFinite(engine.samples()));
+
+    // Across the room (block x, z 1.5..2.2 to 0.1..0.8, then to 3.2..3.9),
+    // then a hundred room sizes away, and back.
+    const V path[] = {V(-1.4, 0.0, -1.4), V(1.7, 0.5, 1.7), V(400.0, 0.0, 0.0), V(-400.0, 300.0, 400.0),
+                      V(1.7, 0.0, -1.4)};
+    for (const V& p : path) {
+        f = engine.moveDynamicObject(translation(p));
+        const RadiositySamples s = engine.samples();
+        const SolutionError e = compareSamples(s, original);
+        std::printf("  at (%g, %g, %g): rms vs start %.4f, linksUpdated %zu, bounces %d\n", p.x, p.y, p.z, e.rms,
+                    f.linksUpdated, f.bounces);
+        ASSERT_TRUE(allFinite(s)) << p.x << " " << p.y << " " << p.z;
+        EXPECT_TRUE(finiteEnergy(engine.energy()));
+    }
+    engine.moveDynamicObject(glm::dmat4(1.0));
+    const FrameStats idle = engine.refinePending();
+    const SolutionError back = compareSamples(engine.samples(), original);
+    std::printf("  back (refinePending refined %zu): rms %.2e max %.2e; test %.2f s\n", idle.refined, back.rms,
+                back.max, secondsSince(start));
+    RecordProperty("rms_tiny", std::to_string(tiny.rms));
+    RecordProperty("rms_back", std::to_string(back.rms));
+    EXPECT_LT(back.rms, 1e-3);
+    EXPECT_LT(compareSamples(engine.samples(), solved).rms, 1e-3);
+    EXPECT_TRUE(allFinite(engine.samples()));
+}
+
+}  // namespace
+}  // namespace rad

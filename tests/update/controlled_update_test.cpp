@@ -1,0 +1,323 @@
+// The controlled update (paper sec. 6.1): whatever the link-update budget, the
+// links must still cover line space completely (one link for every pair of
+// points that face each other), an unlimited budget must be the plain update,
+// a small budget must be coarser but catch up once the viewer idles, and the
+// budget must follow a target frame time.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "Engine.h"
+#include "scene/GltfImport.h"
+#include "support/TestScenes.h"
+
+namespace rad {
+namespace {
+
+using V = glm::dvec3;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+glm::dmat4 translation(V t) { return glm::translate(glm::dmat4(1.0), t); }
+
+std::uint32_t objectIndex(const Engine& engine, const std::string& name) {
+    const auto o = engine.scene().findObject(name);
+    if (!o) throw std::runtime_error("no object " + name);
+    return *o;
+}
+
+bool allFinite(const RadiositySamples& s) {
+    for (double v : s.luminance)
+        if (!std::isfinite(v)) return false;
+    return !s.luminance.empty();
+}
+
+UpdateSettings withBudget(std::size_t budget) {
+    UpdateSettings u;
+    u.budget = budget;
+    return u;
+}
+
+std::string budgetName(std::size_t budget) { return budget == kUnlimited ? "unlimited" : std::to_string(budget); }
+
+// A closed 4 x 3 x 4 m room (inward faces), a light on the ceiling and a
+// dynamic block of six outward faces floating above the floor (as in
+// line_space_update_test.cpp).
+Scene roomWithBlock() {
+    Scene s;
+    s.sourcePath = "room-with-block";
+    const auto white = test::addMaterial(s, V(0.7), V(0.0), "white");
+    const auto grey = test::addMaterial(s, V(0.5, 0.4, 0.3), V(0.0), "block");
+    const auto light = test::addMaterial(s, V(0.0), V(10.0), "light");
+    const auto faces = test::boxFaces(V(0.0), V(4.0, 3.0, 4.0), true);
+    const char* names[] = {"floor", "ceiling", "wall-x0", "wall-x4", "wall-z0", "wall-z4"};
+    for (int i = 0; i < 6; ++i) test::addQuadObject(s, names[i], white, {faces[i]});
+    test::addQuadObject(s, "light", light,
+                        {{V(1.5, 2.999, 1.5), V(2.5, 2.999, 1.5), V(2.5, 2.999, 2.5), V(1.5, 2.999, 2.5)}});
+    test::addQuadObject(s, "block", grey, test::boxFaces(V(1.5, 0.2, 1.5), V(2.2, 0.9, 2.2), false), true);
+    return s;
+}
+
+EngineSettings coarse() {
+    EngineSettings settings;
+    settings.epsilon = 1e-3;
+    return settings;
+}
+
+// The point of an input polygon at parametric (u,v): bilinear over vertices
+// 0..3 for quads, v0 + u (v1 - v0) + v (v2 - v0) for triangles.
+V pointAt(const Polygon& p, const glm::dvec2& uv) {
+    if (p.vertexCount == 3) return p.vertices[0] + uv.x * (p.vertices[1] - p.vertices[0]) + uv.y * (p.vertices[2] - p.vertices[0]);
+    const V a = glm::mix(p.vertices[0], p.vertices[1], uv.x);
+    const V b = glm::mix(p.vertices[3], p.vertices[2], uv.x);
+    return glm::mix(a, b, uv.y);
+}
+
+glm::dvec2 randomParam(const Polygon& p, std::mt19937& random) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    glm::dvec2 uv(unit(random), unit(random));
+    if (p.vertexCount == 3 && uv.x + uv.y > 1.0) uv = glm::dvec2(1.0) - uv;
+    return uv;
+}
+
+struct CoverageResult {
+    int pairs = 0;
+    int missing = 0;  // no link carries the pair
+    int doubled = 0;  // more than one link
+    std::string firstBad;
+};
+
+// Random pairs of points on two different polygons that face each other;
+// each must be carried by exactly one active link.
+CoverageResult checkCoverage(const Engine& engine, unsigned seed, int wanted) {
+    const Scene& scene = engine.scene();
+    std::mt19937 random(seed);
+    std::uniform_int_distribution<std::uint32_t> pick(0, static_cast<std::uint32_t>(scene.polygons.size() - 1));
+    CoverageResult r;
+    for (int attempt = 0; r.pairs < wanted && attempt < 100 * wanted; ++attempt) {
+        const std::uint32_t a = pick(random), b = pick(random);
+        if (a == b) continue;
+        const Polygon& pa = scene.polygons[a];
+        const Polygon& pb = scene.polygons[b];
+        const glm::dvec2 ua = randomParam(pa, random), ub = randomParam(pb, random);
+        const V xa = pointAt(pa, ua), xb = pointAt(pb, ub);
+        const V d = xb - xa;
+        const double len = glm::length(d);
+        // Facing, not grazing: each point clearly in front of the other's plane.
+        if (!(len > 1e-6) || glm::dot(pa.normal(), d) <= 1e-6 * len || glm::dot(pb.normal(), -d) <= 1e-6 * len) continue;
+        ++r.pairs;
+        const std::size_t n = engine.linksCarrying(a, ua, b, ub);
+        if (n == 1) continue;
+        (n == 0 ? r.missing : r.doubled) += 1;
+        if (r.firstBad.empty()) {
+            char buf[256];
+            std::snprintf(buf, sizeof buf, "%zu links from polygon %u (%.4f, %.4f) to polygon %u (%.4f, %.4f)", n, a,
+                          ua.x, ua.y, b, ub.x, ub.y);
+            r.firstBad = buf;
+        }
+    }
+    return r;
+}
+
+// Sec. 6.1: "no matter how much time is allocated for the update, a
+// consistent solution is computed": the links cover line space completely.
+// The energy balance of the closed room: the hierarchical solution itself
+// leaks energy through coarse links (measured absorbed/emitted after the
+// solve: 0.35 at epsilon 1e-2, 0.92 at 1e-3, 0.964 at 2e-4, 0.988 at 1e-4), so
+// the balance is checked at epsilon 1e-4. Under a small budget the reinstated
+// coarse p-links leak more (measured 0.90 for budgets 0..30): bounded loosely
+// there, and within 2% once refinePending() has caught up.
+TEST(ConsistencyControlledUpdate, ConsistentForEveryBudget) {
+    const auto start = Clock::now();
+    EngineSettings settings;
+    settings.epsilon = 1e-4;
+    const std::size_t budgets[] = {0, 1, 30, 3000, kUnlimited};
+    for (std::size_t budget : budgets) {
+        Engine engine(roomWithBlock(), settings);
+        ASSERT_TRUE(engine.solve().converged);
+        const double solvedRatio = engine.energy().absorbed / engine.energy().emitted;
+        if (budget == 0) {
+            const CoverageResult solved = checkCoverage(engine, 7u, 300);
+            EXPECT_EQ(solved.missing + solved.doubled, 0) << "after the solve: " << solved.firstBad;
+        }
+
+        const V steps[] = {V(0.3, 0.0, 0.0), V(0.6, 0.1, -0.2), V(0.2, 0.3, -0.6), V(-0.5, 0.0, 0.4)};
+        std::size_t spent = 0, reinstated = 0, pending = 0;
+        for (const V& s : steps) {
+            const FrameStats f = engine.moveDynamicObject(translation(s), withBudget(budget));
+            spent += f.spent;
+            reinstated += f.budgetReinstated;
+            pending = f.pending;
+            EXPECT_EQ(f.budget, budget);
+        }
+        const CoverageResult c = checkCoverage(engine, 20240611u, 300);
+        const EnergyBalance e = engine.energy();
+        const double ratio = e.absorbed / e.emitted;
+        const std::size_t links = engine.linkCount();
+        const FrameStats idle = engine.refinePending();
+        const CoverageResult caughtUp = checkCoverage(engine, 99u, 100);
+        const double idleRatio = engine.energy().absorbed / engine.energy().emitted;
+        std::printf("  budget %s: %d facing pairs, %d without a link, %d with several; absorbed/emitted %.4f "
+                    "(solve %.4f, after refinePending %.4f); spent %zu, reinstated for budget %zu, pending %zu, "
+                    "links %zu (%zu after refining %zu pending)\n",
+                    budgetName(budget).c_str(), c.pairs, c.missing, c.doubled, ratio, solvedRatio, idleRatio, spent,
+                    reinstated, pending, links, engine.linkCount(), idle.refined);
+        EXPECT_GE(c.pairs, 300) << "budget " << budgetName(budget);
+        EXPECT_EQ(c.missing, 0) << "budget " << budgetName(budget) << ": " << c.firstBad;
+        EXPECT_EQ(c.doubled, 0) << "budget " << budgetName(budget) << ": " << c.firstBad;
+        EXPECT_EQ(caughtUp.missing + caughtUp.doubled, 0) << "after refinePending: " << caughtUp.firstBad;
+        EXPECT_NEAR(solvedRatio, 1.0, 0.02);
+        if (budget == kUnlimited) {
+            EXPECT_NEAR(ratio, 1.0, 0.02);
+        }
+        // Coarser links lose some energy, but never create any.
+        EXPECT_GT(ratio, 0.85) << "budget " << budgetName(budget);
+        EXPECT_LT(ratio, 1.02) << "budget " << budgetName(budget);
+        EXPECT_NEAR(idleRatio, 1.0, 0.02) << "budget " << budgetName(budget);
+        EXPECT_TRUE(allFinite(engine.samples()));
+    }
+    std::printf("  test time %.2f s\n", secondsSince(start));
+}
+
+TEST(ConsistencyControlledUpdate, UnlimitedBudgetEqualsPlainUpdate) {
+    Engine plain(roomWithBlock(), coarse());
+    Engine huge(roomWithBlock(), coarse());
+    ASSERT_TRUE(plain.solve().converged);
+    ASSERT_TRUE(huge.solve().converged);
+    const V moves[] = {V(0.2, 0.0, 0.0), V(0.4, 0.1, 0.1), V(0.4, 0.3, -0.3), V(-0.6, 0.2, 0.5), V(0.05, 0.0, 0.05)};
+    for (int i = 0; i < 5; ++i) {
+        const FrameStats a = plain.moveDynamicObject(translation(moves[i]));
+        const FrameStats b = huge.moveDynamicObject(translation(moves[i]), withBudget(kUnlimited - 1));
+        EXPECT_EQ(a.budget, kUnlimited);
+        EXPECT_EQ(b.budget, kUnlimited - 1);
+        EXPECT_EQ(a.linksUpdated, b.linksUpdated) << "move " << i;
+        EXPECT_EQ(a.refined, b.refined) << "move " << i;
+        EXPECT_EQ(b.budgetReinstated, 0u) << "move " << i;
+        EXPECT_EQ(b.pending, 0u) << "move " << i;
+        const RadiositySamples sa = plain.samples(), sb = huge.samples();
+        ASSERT_EQ(sa.luminance.size(), sb.luminance.size());
+        int differ = 0;
+        for (std::size_t k = 0; k < sa.luminance.size(); ++k) {
+            EXPECT_EQ(sa.luminance[k], sb.luminance[k]) << "move " << i << " sample " << k;
+            differ += sa.luminance[k] != sb.luminance[k];
+            if (differ > 5) break;
+        }
+        std::printf("  move %d: links %zu / %zu, linksUpdated %zu / %zu\n", i, plain.linkCount(), huge.linkCount(),
+                    a.linksUpdated, b.linksUpdated);
+    }
+    EXPECT_EQ(plain.linkCount(), huge.linkCount());
+}
+
+TEST(StabilityControlledUpdate, SmallBudgetIsCoarserThenCatchesUp) {
+    const auto start = Clock::now();
+    EngineSettings settings;
+    settings.epsilon = 5e-4;
+    const Scene office = loadGltf(test::sourcePath("scenes/office.gltf"));
+    Engine limited(office, settings);
+    Engine unlimited(office, settings);
+    limited.setDynamicObject("chair");
+    unlimited.setDynamicObject("chair");
+    ASSERT_TRUE(limited.solve().converged);
+    ASSERT_TRUE(unlimited.solve().converged);
+    const std::uint32_t chair = objectIndex(limited, "chair");
+    const glm::dmat4 start0 = limited.scene().objects[chair].worldFromLocal;
+    std::printf("  office solve: %zu links, %.2f s for both\n", limited.linkCount(), secondsSince(start));
+
+    for (int step = 1; step <= 3; ++step) {
+        const glm::dmat4 to = translation(V(0.5 * step / 3.0, 0.0, 0.0)) * start0;
+        const FrameStats a = limited.moveDynamicObject(to, withBudget(0));
+        const FrameStats b = unlimited.moveDynamicObject(to);
+        std::printf("  step %d: budget 0 spent %zu (reinstated %zu, pending %zu, linksUpdated %zu, %.3f s); "
+                    "unlimited spent %zu (linksUpdated %zu, refined %zu, %.3f s)\n",
+                    step, a.spent, a.budgetReinstated, a.pending, a.linksUpdated, a.totalSeconds, b.spent,
+                    b.linksUpdated, b.refined, b.totalSeconds);
+        EXPECT_EQ(a.budget, 0u);
+        EXPECT_EQ(b.budget, kUnlimited);
+    }
+    Engine full(limited.scene(), settings);
+    ASSERT_TRUE(full.solve().converged);
+    const RadiositySamples reference = full.samples();
+    const SolutionError eLimited = compareSamples(limited.samples(), reference);
+    const SolutionError eUnlimited = compareSamples(unlimited.samples(), reference);
+    const FrameStats idle = limited.refinePending();
+    const SolutionError eCaughtUp = compareSamples(limited.samples(), reference);
+    std::printf("  rms vs full solve: budget 0 %.5f (max %.4f), unlimited %.5f (max %.4f); after refinePending "
+                "(refined %zu, spent %zu, pending %zu) %.5f (max %.4f); test %.2f s\n",
+                eLimited.rms, eLimited.max, eUnlimited.rms, eUnlimited.max, idle.refined, idle.spent, idle.pending,
+                eCaughtUp.rms, eCaughtUp.max, secondsSince(start));
+    RecordProperty("rms_budget0", std::to_string(eLimited.rms));
+    RecordProperty("rms_unlimited", std::to_string(eUnlimited.rms));
+    RecordProperty("rms_caught_up", std::to_string(eCaughtUp.rms));
+    EXPECT_GT(eLimited.rms, eUnlimited.rms);
+    EXPECT_LE(eCaughtUp.rms, 0.01);
+    EXPECT_EQ(idle.pending, 0u);
+    EXPECT_TRUE(allFinite(limited.samples()));
+}
+
+TEST(StabilityControlledUpdate, BudgetFromTargetFrameRate) {
+    Engine engine(roomWithBlock(), coarse());
+    ASSERT_TRUE(engine.solve().converged);
+    const std::size_t initial = engine.budgetFor(0.1);
+    for (int i = 1; i <= 6; ++i) engine.moveDynamicObject(translation(V(0.1 * i, 0.02 * (i % 3), -0.05 * i)));
+    const std::size_t b1 = engine.budgetFor(1.0), b01 = engine.budgetFor(0.1), b0001 = engine.budgetFor(0.001),
+                      b0 = engine.budgetFor(1e-9);
+    std::printf("  budgetFor: 0.1 s before moving %zu; after 6 frames 1 s %zu, 0.1 s %zu, 1 ms %zu, 1 ns %zu, 0 s %zu\n",
+                initial, b1, b01, b0001, b0, engine.budgetFor(0.0));
+    EXPECT_GT(b1, b01);
+    EXPECT_GE(b01, b0001);
+    EXPECT_EQ(b0, 0u);
+    EXPECT_EQ(engine.budgetFor(0.0), 0u);
+    EXPECT_EQ(engine.budgetFor(-1.0), 0u);
+    EXPECT_GT(b01, 0u) << "a tenth of a second must allow some link updates on this small scene";
+}
+
+TEST(StabilityControlledUpdate, ThousandBackAndForthUnderSmallBudget) {
+    const auto start = Clock::now();
+    Engine engine(roomWithBlock(), coarse());
+    ASSERT_TRUE(engine.solve().converged);
+    const RadiositySamples original = engine.samples();
+    const std::size_t links0 = engine.linkCount();
+    const std::size_t memory0 = engine.memory().total();
+
+    const glm::dmat4 a = translation(V(0.25, 0.0, -0.15)), b = translation(V(-0.2, 0.15, 0.3));
+    const UpdateSettings small = withBudget(30);
+    std::size_t maxSpent = 0, maxPending = 0, maxLinks = 0;
+    constexpr int kMoves = 1000;
+    for (int i = 0; i < kMoves; ++i) {
+        const FrameStats f = engine.moveDynamicObject(i % 2 == 0 ? a : b, small);
+        maxSpent = std::max(maxSpent, f.spent);
+        maxPending = std::max(maxPending, f.pending);
+        maxLinks = std::max(maxLinks, engine.linkCount());
+    }
+    const double walkSeconds = secondsSince(start);
+    engine.moveDynamicObject(glm::dmat4(1.0), small);
+    const FrameStats idle = engine.refinePending();
+    const RadiositySamples back = engine.samples();
+    ASSERT_TRUE(allFinite(back));
+    const SolutionError e = compareSamples(back, original);
+    const std::size_t links1 = engine.linkCount();
+    const std::size_t memory1 = engine.memory().total();
+    std::printf("  %d moves under budget 30: at most %zu spent and %zu pending per frame, at most %zu links; "
+                "back + refinePending (refined %zu): rms %.2e max %.2e; links %zu -> %zu, memory %zu -> %zu bytes; "
+                "%.2f s\n",
+                kMoves, maxSpent, maxPending, maxLinks, idle.refined, e.rms, e.max, links0, links1, memory0, memory1,
+                walkSeconds);
+    RecordProperty("rms", std::to_string(e.rms));
+    EXPECT_LT(e.rms, 1e-3);
+    EXPECT_LE(static_cast<double>(links1), 1.05 * static_cast<double>(links0));
+    EXPECT_LE(static_cast<double>(memory1), 1.05 * static_cast<double>(memory0));
+}
+
+}  // namespace
+}  // namespace rad
