@@ -1,0 +1,325 @@
+#include "viewer/EngineThread.h"
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace rad::viewer {
+namespace {
+
+struct Cancelled {};
+
+// 'name' and the rest of a message (an ostream: GCC 12 reports false
+// -Wrestrict errors on small string concatenations once inlined).
+std::string quoted(const std::string& name, const char* rest) {
+    std::ostringstream out;
+    out << '\'' << name << '\'' << rest;
+    return out.str();
+}  // thrown from the solve's progress callback on Quit
+
+template <class... F>
+struct Overloaded : F... {
+    using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+}  // namespace
+
+// Everything only the engine thread touches.
+struct EngineThread::Worker {
+    Scene original;  // as loaded: a new epsilon solves it again
+    EngineSettings settings;
+    EngineThreadOptions options;
+    std::unique_ptr<Engine> engine;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+
+    bool solving = true;
+    std::string progress;
+    std::string error;
+    FrameStats frame;
+    std::uint64_t moves = 0;
+    std::uint64_t version = 0;
+    double targetFps = 30.0;
+    SnapshotOverlays overlays;
+    std::optional<std::uint32_t> selected;
+    std::string selectionNote;
+    std::map<std::uint32_t, glm::dmat4> moved;  // transforms applied, to re-apply after a re-solve
+    std::deque<UpdateSample> history;
+
+    double now() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    UpdateSettings update() const {
+        UpdateSettings u;
+        if (engine && targetFps > 0.0) u.budget = engine->budgetFor(1.0 / targetFps);
+        return u;
+    }
+};
+
+EngineThread::EngineThread(Scene scene, const EngineSettings& settings, EngineThreadOptions options)
+    : worker_(std::make_unique<Worker>()) {
+    worker_->original = std::move(scene);
+    worker_->settings = settings;
+    worker_->targetFps = options.targetFps;
+    worker_->overlays = options.overlays;
+    worker_->options = std::move(options);
+    auto first = std::make_shared<ViewerSnapshot>();
+    first->targetFps = worker_->targetFps;
+    first->epsilon = settings.epsilon;
+    first->overlays = worker_->overlays;
+    first->progress = "starting";
+    latest_ = std::move(first);
+    thread_ = std::thread([this] { run(); });
+}
+
+EngineThread::~EngineThread() { stop(); }
+
+void EngineThread::stop() {
+    {
+        std::lock_guard lock(queueMutex_);
+        quit_ = true;
+        queue_.emplace_back(Quit{});
+    }
+    queueCv_.notify_all();
+    if (thread_.joinable()) thread_.join();
+}
+
+void EngineThread::post(Command command) {
+    {
+        std::lock_guard lock(queueMutex_);
+        if (std::holds_alternative<Quit>(command)) quit_ = true;
+        queue_.push_back(std::move(command));
+    }
+    queueCv_.notify_all();
+}
+
+std::shared_ptr<const ViewerSnapshot> EngineThread::latest() const {
+    std::lock_guard lock(snapshotMutex_);
+    return latest_;
+}
+
+std::shared_ptr<const ViewerSnapshot> EngineThread::waitNewer(std::uint64_t after,
+                                                              double timeoutSeconds) const {
+    std::unique_lock lock(snapshotMutex_);
+    snapshotCv_.wait_for(lock, std::chrono::duration<double>(timeoutSeconds),
+                         [&] { return latest_->version > after; });
+    return latest_;
+}
+
+void EngineThread::run() {
+    Worker& w = *worker_;
+    auto quitRequested = [this] {
+        std::lock_guard lock(queueMutex_);
+        return quit_;
+    };
+
+    auto publish = [&](bool withMesh) {
+        auto s = std::make_shared<ViewerSnapshot>();
+        s->version = ++w.version;
+        s->solving = w.solving;
+        s->progress = w.progress;
+        s->error = w.error;
+        s->frame = w.frame;
+        s->moves = w.moves;
+        s->targetFps = w.targetFps;
+        s->epsilon = w.settings.epsilon;
+        s->overlays = w.overlays;
+        s->selected = w.selected;
+        s->selectionNote = w.selectionNote;
+        s->updateTimes.assign(w.history.begin(), w.history.end());
+        const Scene& scene = w.engine ? w.engine->scene() : w.original;
+        for (std::uint32_t o = 0; o < scene.objects.size(); ++o)
+            s->objects.push_back({scene.objects[o].name, scene.objects[o].dynamic,
+                                  scene.objects[o].worldFromLocal, scene.objectBounds(o)});
+        if (w.engine && !w.solving && w.error.empty()) {
+            s->solve = w.engine->stats();
+            s->memory = w.engine->memory();
+            s->linkCount = w.engine->linkCount();
+            s->budget = w.update().budget.value_or(kUnlimited);
+            if (withMesh) s->mesh = std::make_shared<const MeshSnapshot>(w.engine->snapshot(w.overlays));
+        }
+        {
+            std::lock_guard lock(snapshotMutex_);
+            if (!s->mesh && latest_) s->mesh = latest_->mesh;  // keep showing the last picture
+            latest_ = std::move(s);
+        }
+        snapshotCv_.notify_all();
+    };
+
+    auto fail = [&](const std::string& message) {
+        w.error = message;
+        w.solving = false;
+        publish(false);
+    };
+
+    auto select = [&](std::optional<std::uint32_t> object) {
+        w.selected = object;
+        w.selectionNote.clear();
+        if (!object) return;
+        const Object& o = w.engine->scene().objects[*object];
+        if (!o.dynamic) {
+            w.selectionNote = quoted(o.name, " is not marked dynamic in the scene: it cannot be moved");
+            return;
+        }
+        if (w.engine->dynamicObject() != object) w.frame = w.engine->setDynamicObject(o.name, w.update());
+    };
+
+    // Builds and solves the engine; re-applies earlier moves and the selection.
+    auto solveEngine = [&]() -> bool {
+        w.solving = true;
+        w.progress = "building the hierarchy";
+        publish(false);
+        try {
+            w.engine.reset();
+            w.engine = std::make_unique<Engine>(Scene(w.original), w.settings);
+            w.engine->solve([&](const std::string& line) {
+                if (quitRequested()) throw Cancelled{};
+                w.progress = line;
+                publish(false);
+            });
+            const auto current = w.selected;
+            for (const auto& [object, m] : w.moved) {
+                w.engine->setDynamicObject(w.engine->scene().objects[object].name);
+                w.frame = w.engine->moveDynamicObject(m);
+            }
+            w.solving = false;
+            w.progress = w.engine->stats().converged ? "solved" : w.engine->stats().message;
+            select(current);
+            return true;
+        } catch (const Cancelled&) {
+            return false;
+        } catch (const std::exception& e) {
+            w.engine.reset();
+            fail(e.what());
+            return false;
+        }
+    };
+
+    if (!solveEngine()) return;
+    if (!w.options.select.empty()) {
+        try {
+            const auto object = w.engine->scene().findObject(w.options.select);
+            if (!object) {
+                std::string m = "--select: no object named '";
+                m += w.options.select;
+                m += "'";
+                throw std::invalid_argument(m);
+            }
+            select(object);
+        } catch (const std::exception& e) {
+            w.selectionNote = e.what();
+        }
+    }
+    publish(true);
+
+    for (;;) {
+        std::deque<Command> commands;
+        {
+            std::unique_lock lock(queueMutex_);
+            if (queue_.empty() && !(w.engine && w.frame.pending > 0)) queueCv_.wait(lock, [&] { return !queue_.empty(); });
+            commands.swap(queue_);
+        }
+        if (commands.empty()) {  // idle: refine what earlier budgets left coarse
+            const std::size_t before = w.frame.pending;
+            try {
+                w.frame = w.engine->refinePending(w.update());
+            } catch (const std::exception& e) {
+                w.selectionNote = e.what();
+                w.frame.pending = 0;
+            }
+            if (w.frame.pending >= before && w.frame.spent == 0) w.frame.pending = 0;  // no progress: stop
+            publish(true);
+            continue;
+        }
+
+        bool changed = false;
+        for (std::size_t i = 0; i < commands.size(); ++i) {
+            const Command& command = commands[i];
+            if (std::holds_alternative<Quit>(command)) return;
+            if (!w.engine) continue;  // the solve failed: nothing to do but quit
+            try {
+                std::visit(
+                    Overloaded{
+                        [&](const SetTransform& t) {
+                            // Consecutive transforms of one object: only the newest counts.
+                            if (i + 1 < commands.size())
+                                if (const auto* next = std::get_if<SetTransform>(&commands[i + 1]);
+                                    next && next->object == t.object)
+                                    return;
+                            const Scene& scene = w.engine->scene();
+                            if (t.object >= scene.objects.size()) return;
+                            const Object& o = scene.objects[t.object];
+                            if (w.options.log) {
+                                std::ostringstream line;
+                                line << "engine: transform " << o.name << " translation "
+                                     << t.worldFromLocal[3][0] << ' ' << t.worldFromLocal[3][1]
+                                     << ' ' << t.worldFromLocal[3][2];
+                                w.options.log(line.str());
+                            }
+                            if (!o.dynamic) {
+                                w.selectionNote = quoted(o.name, " is not marked dynamic: not moved");
+                                return;
+                            }
+                            if (w.engine->dynamicObject() != t.object)
+                                w.engine->setDynamicObject(o.name, w.update());
+                            w.frame = w.engine->moveDynamicObject(t.worldFromLocal, w.update());
+                            w.moved[t.object] = t.worldFromLocal;
+                            ++w.moves;
+                            w.history.push_back({w.now(), w.frame.totalSeconds});
+                            while (!w.history.empty() &&
+                                   w.history.front().time < w.now() - w.options.historySeconds)
+                                w.history.pop_front();
+                            changed = true;
+                        },
+                        [&](const SelectObject& s) {
+                            if (s.name.empty()) {
+                                select(std::nullopt);
+                            } else {
+                                const auto object = w.engine->scene().findObject(s.name);
+                                if (!object) {
+                                    std::string m = "no object named '";
+                                    m += s.name;
+                                    m += "'";
+                                    throw std::invalid_argument(m);
+                                }
+                                select(object);
+                            }
+                            changed = true;
+                        },
+                        [&](const PickObject& p) {
+                            select(w.engine->pick(p.origin, p.direction));
+                            changed = true;
+                        },
+                        [&](const SetTargetFps& f) {
+                            w.targetFps = f.fps;
+                            changed = true;
+                        },
+                        [&](const SetEpsilon& e) {
+                            if (e.epsilon == w.settings.epsilon) return;
+                            w.settings.epsilon = e.epsilon;
+                            if (!solveEngine()) throw Cancelled{};
+                            changed = true;
+                        },
+                        [&](const SetOverlays& o) {
+                            w.overlays = o.overlays;
+                            changed = true;
+                        },
+                        [&](const Quit&) {},
+                    },
+                    command);
+            } catch (const Cancelled&) {
+                return;
+            } catch (const std::exception& e) {
+                w.selectionNote = e.what();
+                changed = true;
+            }
+        }
+        if (changed) publish(true);
+    }
+}
+
+}  // namespace rad::viewer

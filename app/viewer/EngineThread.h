@@ -1,0 +1,127 @@
+#pragma once
+// The viewer's engine thread. It owns the Engine (nothing else touches it),
+// takes commands from a queue and publishes an immutable ViewerSnapshot after
+// every update; the render loop reads the newest one and never waits.
+//
+//   EngineThread engine(std::move(scene), settings, options);   // starts and solves
+//   engine.post(SetTransform{object, worldFromLocal});           // from the UI
+//   std::shared_ptr<const ViewerSnapshot> s = engine.latest();   // any time
+//   // the destructor sends Quit and joins.
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <variant>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "Engine.h"
+
+namespace rad::viewer {
+
+struct ObjectInfo {
+    std::string name;
+    bool dynamic = false;  // marked dynamic in the scene: the gizmo may move it
+    glm::dmat4 worldFromLocal{1.0};
+    Aabb bounds;
+};
+
+struct UpdateSample {
+    double time = 0.0;     // seconds since the engine thread started
+    double seconds = 0.0;  // the update's total time
+};
+
+struct ViewerSnapshot {
+    std::uint64_t version = 0;  // increases with every publication
+    std::shared_ptr<const MeshSnapshot> mesh;  // null before the first solve ends
+    bool solving = true;
+    std::string progress;  // the solve's last progress line
+    std::string error;     // why the engine could not solve, if it could not
+    SolveStats solve;
+    FrameStats frame;        // the last update (move or pending refinement)
+    std::uint64_t moves = 0; // transforms applied so far
+    std::size_t budget = 0;  // link updates allowed per frame at the target rate
+    double targetFps = 0.0;
+    double epsilon = 0.0;
+    MemoryStats memory;
+    std::size_t linkCount = 0;
+    SnapshotOverlays overlays;
+    std::vector<ObjectInfo> objects;
+    std::optional<std::uint32_t> selected;
+    std::string selectionNote;  // e.g. "not marked dynamic: cannot be moved"
+    std::vector<UpdateSample> updateTimes;  // moves of the last seconds, oldest first
+};
+
+// Commands.
+struct SetTransform {
+    std::uint32_t object = 0;
+    glm::dmat4 worldFromLocal{1.0};
+};
+struct SelectObject {
+    std::string name;  // empty: select nothing
+};
+struct PickObject {
+    glm::dvec3 origin{0.0};
+    glm::dvec3 direction{0.0, 0.0, -1.0};
+};
+struct SetTargetFps {
+    double fps = 30.0;
+};
+struct SetEpsilon {
+    double epsilon = 2e-4;
+};
+struct SetOverlays {
+    SnapshotOverlays overlays;
+};
+struct Quit {};
+using Command = std::variant<SetTransform, SelectObject, PickObject, SetTargetFps, SetEpsilon,
+                             SetOverlays, Quit>;
+
+struct EngineThreadOptions {
+    double targetFps = 30.0;
+    SnapshotOverlays overlays;
+    std::string select;  // object to select once solved
+    // Called on the engine thread with one line per transform it receives
+    // (--log-transforms); empty: silent.
+    std::function<void(const std::string&)> log;
+    double historySeconds = 10.0;  // how much of updateTimes to keep
+};
+
+class EngineThread {
+  public:
+    EngineThread(Scene scene, const EngineSettings& settings, EngineThreadOptions options = {});
+    ~EngineThread();  // posts Quit and joins
+    EngineThread(const EngineThread&) = delete;
+    EngineThread& operator=(const EngineThread&) = delete;
+
+    void post(Command command);
+    std::shared_ptr<const ViewerSnapshot> latest() const;
+    // Blocks until a snapshot with version > after exists or timeoutSeconds
+    // pass (for tests and the headless stress run; the render loop never calls it).
+    std::shared_ptr<const ViewerSnapshot> waitNewer(std::uint64_t after, double timeoutSeconds) const;
+    void stop();  // Quit and join; idempotent
+
+  private:
+    struct Worker;
+    void run();
+
+    std::unique_ptr<Worker> worker_;  // engine-thread-only state
+    mutable std::mutex queueMutex_;
+    std::condition_variable queueCv_;
+    std::deque<Command> queue_;
+    bool quit_ = false;  // under queueMutex_
+
+    mutable std::mutex snapshotMutex_;
+    mutable std::condition_variable snapshotCv_;
+    std::shared_ptr<const ViewerSnapshot> latest_;
+    std::thread thread_;
+};
+
+}  // namespace rad::viewer

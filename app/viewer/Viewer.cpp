@@ -1,0 +1,461 @@
+// The window: GLFW + Vulkan swapchain + Dear ImGui, drawing the engine
+// thread's newest snapshot every frame.
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "image/Image.h"
+#include "render/CameraView.h"
+#include "render/MeshRenderer.h"
+#include "render/OffscreenRenderer.h"
+#include "render/VulkanContext.h"
+#include "render/WindowRenderer.h"
+#include "scene/GltfExport.h"
+#include "scene/GltfImport.h"
+#include "ui/Gizmo.h"
+#include "ui/Panels.h"
+#include "viewer/EngineThread.h"
+#include "viewer/OrbitCamera.h"
+#include "viewer/ViewerOptions.h"
+
+namespace rad::viewer {
+namespace {
+
+constexpr const char* kNoDisplay =
+    "radiosity-viewer: no display (DISPLAY is not set); use radiosity-cli for headless work "
+    "(radiosity-cli --help)";
+
+struct KeyEvents {
+    bool toggleLinks = false, toggleChanged = false, quit = false;
+};
+
+struct GlfwSession {
+    GlfwSession() : ok(glfwInit() == GLFW_TRUE) {}
+    ~GlfwSession() {
+        if (ok) glfwTerminate();
+    }
+    bool ok;
+};
+
+struct WindowHandle {
+    GLFWwindow* window = nullptr;
+    ~WindowHandle() {
+        if (window) glfwDestroyWindow(window);
+    }
+};
+
+// Owns the ImGui context and its backends for the window's lifetime.
+struct ImGuiSession {
+    VkDevice device = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    bool glfw = false, vulkan = false;
+    ~ImGuiSession() {
+        if (vulkan) ImGui_ImplVulkan_Shutdown();
+        if (glfw) ImGui_ImplGlfw_Shutdown();
+        if (ImGui::GetCurrentContext()) ImGui::DestroyContext();
+        if (pool != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, pool, nullptr);
+    }
+};
+
+void checkImGuiVk(VkResult r) {
+    if (r < 0) throw std::runtime_error("ImGui Vulkan backend: " + vkResultName(r));
+}
+
+// dir/stem-suffix.ext, then -1, -2 ... until the name is free. Beside the
+// scene when that folder is writable, else in the current directory.
+std::string freeOutputPath(const std::string& scenePath, const std::string& suffix, const std::string& ext) {
+    namespace fs = std::filesystem;
+    fs::path dir = fs::path(scenePath).parent_path();
+    if (dir.empty()) dir = ".";
+    if (access(dir.c_str(), W_OK) != 0) dir = ".";
+    const std::string stem = fs::path(scenePath).stem().string();
+    for (int i = 0;; ++i) {
+        std::string name = stem;
+        name += suffix;
+        if (i > 0) {
+            name += '-';
+            name += std::to_string(i);
+        }
+        name += ext;
+        const fs::path p = dir / name;
+        if (!fs::exists(p)) return p.string();
+    }
+}
+
+MeshSnapshot exposed(const MeshSnapshot& mesh, double exposure, bool hardwareSrgb) {
+    MeshSnapshot m = mesh;
+    const auto scale = static_cast<float>(std::exp2(exposure));
+    for (glm::vec3& c : m.colors) {
+        c *= scale;
+        if (!hardwareSrgb)  // UNORM swapchain: encode here (per vertex, close enough)
+            for (int k = 0; k < 3; ++k) c[k] = encodeSrgb(c[k]) / 255.0f;
+    }
+    return m;
+}
+
+}  // namespace
+
+int runViewer(const ViewerOptions& options) {
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display) {
+        std::puts(kNoDisplay);
+        return 1;
+    }
+    glfwSetErrorCallback(nullptr);
+    GlfwSession glfw;
+    if (!glfw.ok) {
+        std::string line = "radiosity-viewer: no display (cannot open DISPLAY=";
+        line += display;
+        line += "); use radiosity-cli for headless work (radiosity-cli --help)";
+        std::puts(line.c_str());
+        return 1;
+    }
+    if (!glfwVulkanSupported()) throw std::runtime_error("GLFW finds no Vulkan loader");
+
+    Scene scene = loadGltf(options.scene);
+    const Aabb sceneBounds = scene.bounds();
+    const std::string sceneName = std::filesystem::path(options.scene).filename().string();
+
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    WindowHandle win;
+    std::string title = "radiosity-viewer - ";
+    title += sceneName;
+    win.window = glfwCreateWindow(options.width, options.height, title.c_str(), nullptr, nullptr);
+    if (!win.window) throw std::runtime_error("cannot create a window");
+    GLFWwindow* window = win.window;
+    // Keys arrive through a callback (ImGui chains to it), so short taps are
+    // never missed or seen twice.
+    KeyEvents keys;
+    glfwSetWindowUserPointer(window, &keys);
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+        if (action != GLFW_PRESS) return;
+        auto* k = static_cast<KeyEvents*>(glfwGetWindowUserPointer(w));
+        if (key == GLFW_KEY_L) k->toggleLinks = true;
+        if (key == GLFW_KEY_C) k->toggleChanged = true;
+        if (key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL)) k->quit = true;
+    });
+
+    // Vulkan: instance with the surface extensions, a device that presents.
+    VkSurfaceKHR surface = VK_NULL_HANDLE;
+    VulkanContextOptions vo;
+    vo.applicationName = "radiosity-viewer";
+    std::uint32_t extCount = 0;
+    const char** exts = glfwGetRequiredInstanceExtensions(&extCount);
+    for (std::uint32_t i = 0; i < extCount; ++i) vo.instanceExtensions.emplace_back(exts[i]);
+    vo.deviceExtensions.emplace_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    vo.onInstanceCreated = [&](VkInstance instance) {
+        vkCheck(glfwCreateWindowSurface(instance, window, nullptr, &surface), "glfwCreateWindowSurface");
+    };
+    vo.queueFamilyFilter = [&](VkInstance, VkPhysicalDevice pd, std::uint32_t family) {
+        VkBool32 supported = VK_FALSE;
+        return vkGetPhysicalDeviceSurfaceSupportKHR(pd, family, surface, &supported) == VK_SUCCESS &&
+               supported == VK_TRUE;
+    };
+    auto context = std::make_unique<VulkanContext>(vo);
+    const auto validationMessages = context->validationMessageCounter();
+    struct SurfaceGuard {
+        VkInstance instance;
+        VkSurfaceKHR& surface;
+        ~SurfaceGuard() {
+            if (surface != VK_NULL_HANDLE) vkDestroySurfaceKHR(instance, surface, nullptr);
+        }
+    };
+    int exitCode = 0;
+    {
+        SurfaceGuard surfaceGuard{context->instance(), surface};
+        auto framebufferSize = [window] {
+            int w = 0, h = 0;
+            glfwGetFramebufferSize(window, &w, &h);
+            return VkExtent2D{static_cast<std::uint32_t>(std::max(w, 0)), static_cast<std::uint32_t>(std::max(h, 0))};
+        };
+        WindowRenderer windowRenderer(*context, surface, framebufferSize);
+        MeshRenderer meshRenderer(*context, windowRenderer.renderPass());
+        std::optional<OffscreenRenderer> offscreen;
+
+        // Dear ImGui.
+        ImGuiSession imgui;
+        imgui.device = context->device();
+        {
+            const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8};
+            auto info = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+            info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+            info.maxSets = 8;
+            info.poolSizeCount = 1;
+            info.pPoolSizes = &size;
+            vkCheck(vkCreateDescriptorPool(context->device(), &info, nullptr, &imgui.pool), "vkCreateDescriptorPool");
+        }
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGuiIO& io = ImGui::GetIO();
+        io.IniFilename = nullptr;
+        ImGui::StyleColorsDark();
+        if (windowRenderer.srgb()) ui::linearizeStyleColors();
+        imgui.glfw = ImGui_ImplGlfw_InitForVulkan(window, true);
+        ImGui_ImplVulkan_InitInfo ii{};
+        ii.Instance = context->instance();
+        ii.PhysicalDevice = context->physicalDevice();
+        ii.Device = context->device();
+        ii.QueueFamily = context->queueFamily();
+        ii.Queue = context->queue();
+        ii.DescriptorPool = imgui.pool;
+        ii.Subpass = 0;
+        ii.MinImageCount = windowRenderer.minImageCount();
+        ii.ImageCount = windowRenderer.imageCount();
+        ii.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+        ii.CheckVkResultFn = checkImGuiVk;
+        imgui.vulkan = ImGui_ImplVulkan_Init(&ii, windowRenderer.renderPass());
+        context->runOneShot([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+        ImGui_ImplVulkan_DestroyFontUploadObjects();
+        std::uint64_t imguiGeneration = windowRenderer.swapchainGeneration();
+
+        // The engine thread.
+        EngineThreadOptions eo;
+        eo.targetFps = options.targetFps;
+        eo.overlays = options.overlays;
+        eo.select = options.select;
+        if (options.logTransforms)
+            eo.log = [](const std::string& line) {
+                std::printf("%s\n", line.c_str());
+                std::fflush(stdout);
+            };
+        EngineThread engine(Scene(scene), options.engine, eo);
+
+        // View state.
+        int fbw = 0, fbh = 0;
+        glfwGetFramebufferSize(window, &fbw, &fbh);
+        OrbitCamera camera(sceneCameraOrAutoFit(scene, double(fbw) / std::max(fbh, 1)), sceneBounds);
+        ui::PanelControls controls;
+        controls.targetFps = static_cast<float>(options.targetFps);
+        controls.epsilon = static_cast<float>(options.engine.epsilon);
+        controls.exposure = static_cast<float>(options.exposure);
+        controls.showLinks = options.overlays.modifiedLinks;
+        controls.showChanged = options.overlays.changedElements;
+        ui::Gizmo gizmo;
+        std::map<std::uint32_t, glm::dmat4> sent;  // the last transform sent per object
+        std::string lastMessage;
+        bool leftOnScene = false, leftDragged = false;
+        bool gizmoPrinted = false;
+
+        std::shared_ptr<const GpuMesh> gpuMesh;
+        std::shared_ptr<const MeshSnapshot> gpuSource;
+        double gpuExposure = options.exposure;
+
+        auto pending = options.screenshots;
+        std::sort(pending.begin(), pending.end());
+        const auto start = std::chrono::steady_clock::now();
+        double firstMeshAt = -1.0;
+
+        while (!glfwWindowShouldClose(window)) {
+            glfwPollEvents();
+            const double now = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const std::shared_ptr<const ViewerSnapshot> snap = engine.latest();
+
+            // Upload a new picture when the engine published one.
+            if (snap->mesh && (snap->mesh != gpuSource || gpuExposure != controls.exposure)) {
+                gpuSource = snap->mesh;
+                gpuExposure = controls.exposure;
+                gpuMesh = std::make_shared<const GpuMesh>(*context, exposed(*snap->mesh, gpuExposure, windowRenderer.srgb()));
+                if (firstMeshAt < 0.0) firstMeshAt = now;
+            }
+
+            if (windowRenderer.swapchainGeneration() != imguiGeneration) {
+                ImGui_ImplVulkan_SetMinImageCount(windowRenderer.minImageCount());
+                imguiGeneration = windowRenderer.swapchainGeneration();
+            }
+            ImGui_ImplVulkan_NewFrame();
+            ImGui_ImplGlfw_NewFrame();
+            ImGui::NewFrame();
+
+            // The panel.
+            ui::PanelState ps;
+            ps.sceneName = sceneName;
+            ps.solving = snap->solving;
+            ps.error = !snap->error.empty();
+            if (ps.error) {
+                ps.status = snap->error;
+            } else if (snap->solving) {
+                ps.status = "solving: ";
+                ps.status += snap->progress;
+            } else {
+                ps.status = snap->progress;
+            }
+            ps.polygons = snap->solve.polygons;
+            ps.elements = snap->solve.elements;
+            ps.links = snap->solve.links;
+            ps.passiveLinks = snap->solve.passiveLinks;
+            ps.memoryBytes = snap->memory.total();
+            ps.solveSeconds = snap->solve.refineSeconds + snap->solve.solveSeconds;
+            ps.budget = snap->budget;
+            ps.budgetUnlimited = snap->budget == kUnlimited;
+            ps.moves = snap->moves;
+            ps.pending = snap->frame.pending;
+            ps.linksUpdated = snap->frame.linksUpdated;
+            ps.lastUpdateMs = snap->frame.totalSeconds * 1e3;
+            for (const UpdateSample& u : snap->updateTimes)
+                if (u.time >= snap->updateTimes.back().time - 5.0) ps.updateMs.push_back(static_cast<float>(u.seconds * 1e3));
+            const ObjectInfo* selected =
+                snap->selected && *snap->selected < snap->objects.size() ? &snap->objects[*snap->selected] : nullptr;
+            if (selected) {
+                ps.selected = selected->name;
+                ps.movable = selected->dynamic;
+            }
+            ps.selectionNote = snap->selectionNote;
+            ps.lastMessage = lastMessage;
+            ui::PanelActions actions = ui::drawPanels(ps, controls);
+            if (actions.targetFpsChanged) engine.post(SetTargetFps{controls.targetFps});
+            if (actions.epsilonCommitted) engine.post(SetEpsilon{controls.epsilon});
+            // Keys: L and C toggle the overlays, Ctrl+Q closes the window.
+            if (!io.WantCaptureKeyboard) {
+                if (keys.toggleLinks) controls.showLinks = !controls.showLinks;
+                if (keys.toggleChanged) controls.showChanged = !controls.showChanged;
+                actions.overlaysChanged |= keys.toggleLinks || keys.toggleChanged;
+                if (keys.quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
+            }
+            keys = KeyEvents{};
+            if (actions.overlaysChanged) engine.post(SetOverlays{{controls.showLinks, controls.showChanged}});
+
+            // Camera and view.
+            const glm::dvec2 viewport(io.DisplaySize.x, io.DisplaySize.y);
+            const double aspect = viewport.y > 0.0 ? viewport.x / viewport.y : 1.0;
+            CameraView view = camera.view(aspect);
+            const Camera cam = camera.camera();
+
+            // The gizmo on a movable selection.
+            ui::GizmoView gv{view.viewProjection(), viewport, cam.position, cam.up};
+            if (selected && selected->dynamic && gpuMesh && !selected->bounds.empty()) {
+                const std::uint32_t id = *snap->selected;
+                glm::dmat4 current = selected->worldFromLocal;
+                glm::dvec3 center = selected->bounds.center();
+                if (auto it = sent.find(id); it != sent.end()) {  // the engine may lag behind
+                    center = glm::dvec3(it->second * glm::inverse(current) * glm::dvec4(center, 1.0));
+                    current = it->second;
+                }
+                if (const auto moved = gizmo.update(gv, center, current)) {
+                    if (sent.find(id) == sent.end() || sent[id] != *moved) {
+                        sent[id] = *moved;
+                        engine.post(SetTransform{id, *moved});
+                    }
+                }
+                if (options.printGizmo && !gizmoPrinted && !snap->solving) {
+                    if (const auto h = ui::Gizmo::handlePosition(gv, center, ui::GizmoPart::AxisX)) {
+                        int wx = 0, wy = 0;
+                        glfwGetWindowPos(window, &wx, &wy);
+                        const auto c = ui::Gizmo::handlePosition(gv, center, ui::GizmoPart::None);
+                        std::printf("gizmo: x-handle %d %d center %d %d\n", wx + int(std::lround(h->x)),
+                                    wy + int(std::lround(h->y)), wx + int(std::lround(c->x)),
+                                    wy + int(std::lround(c->y)));
+                        std::fflush(stdout);
+                        gizmoPrinted = true;
+                    }
+                }
+            }
+
+            // Mouse on the scene: orbit, pan, zoom, pick.
+            const bool sceneMouse = !io.WantCaptureMouse && gizmo.hovered() == ui::GizmoPart::None && !gizmo.dragging();
+            if (ImGui::IsMouseClicked(0)) {
+                leftOnScene = sceneMouse;
+                leftDragged = false;
+            }
+            if (leftOnScene && ImGui::IsMouseDown(0)) {
+                if (ImGui::IsMouseDragging(0, 3.0f)) leftDragged = true;
+                if (leftDragged) camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
+            }
+            if (leftOnScene && ImGui::IsMouseReleased(0)) {
+                if (!leftDragged && viewport.x > 0 && viewport.y > 0) {
+                    const glm::dmat4 inv = glm::inverse(view.viewProjection());
+                    const glm::dvec2 ndc(2.0 * io.MousePos.x / viewport.x - 1.0, 2.0 * io.MousePos.y / viewport.y - 1.0);
+                    const glm::dvec4 n = inv * glm::dvec4(ndc, 0.0, 1.0);
+                    const glm::dvec4 f = inv * glm::dvec4(ndc, 1.0, 1.0);
+                    const glm::dvec3 dir = glm::normalize(glm::dvec3(f) / f.w - glm::dvec3(n) / n.w);
+                    engine.post(PickObject{glm::dvec3(n) / n.w, dir});
+                }
+                leftOnScene = false;
+            }
+            if (sceneMouse) {
+                if (ImGui::IsMouseDragging(1, 1.0f) || ImGui::IsMouseDragging(2, 1.0f))
+                    camera.pan(io.MouseDelta.x, io.MouseDelta.y, viewport.y);
+                if (io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
+            }
+            view = camera.view(aspect);
+
+            // Buttons.
+            if ((actions.saveScreenshot || actions.exportMesh) && !snap->mesh) lastMessage = "nothing to save yet";
+            else if (actions.saveScreenshot) {
+                try {
+                    if (!offscreen) offscreen.emplace(*context);
+                    Image image = offscreen->render(*snap->mesh, view.viewProjectionF(), std::max(fbw, 1), std::max(fbh, 1),
+                                                    {true, true, 1.0f});
+                    const auto scale = static_cast<float>(std::exp2(controls.exposure));
+                    for (float& v : image.rgb) v *= scale;
+                    const std::string path = freeOutputPath(options.scene, "-screenshot", ".png");
+                    writeImage(image, path);
+                    lastMessage = "saved ";
+                    lastMessage += path;
+                } catch (const std::exception& e) {
+                    lastMessage = e.what();
+                }
+            } else if (actions.exportMesh) {
+                try {
+                    const std::string path = freeOutputPath(options.scene, "-lit", ".glb");
+                    MeshSnapshot mesh = *snap->mesh;
+                    mesh.linePositions.clear();
+                    mesh.lineColors.clear();
+                    exportGltf(mesh, path);
+                    lastMessage = "exported ";
+                    lastMessage += path;
+                } catch (const std::exception& e) {
+                    lastMessage = e.what();
+                }
+            }
+
+            ImGui::Render();
+            glfwGetFramebufferSize(window, &fbw, &fbh);
+
+            // Screenshot hooks wait for the first picture (30 s at most).
+            std::string capture;
+            if (!pending.empty() && now >= pending.front().first && (firstMeshAt >= 0.0 || now > pending.front().first + 30.0)) {
+                capture = pending.front().second;
+                pending.erase(pending.begin());
+            }
+            if (VkCommandBuffer cmd = windowRenderer.beginFrame({0.02f, 0.02f, 0.025f, 1.0f})) {
+                if (gpuMesh) meshRenderer.draw(cmd, *gpuMesh, view.viewProjectionF(), windowRenderer.extent(), {true, true, 1.0f});
+                ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
+                windowRenderer.endFrame(gpuMesh, capture);
+                if (!capture.empty()) {
+                    std::printf("screenshot: %s\n", capture.c_str());
+                    std::fflush(stdout);
+                }
+            } else if (!capture.empty()) {
+                pending.insert(pending.begin(), {now, capture});  // try again next frame
+            }
+
+            if (options.quitAfter && now >= *options.quitAfter &&
+                (pending.empty() || pending.front().first > *options.quitAfter || now > *options.quitAfter + 30.0))
+                glfwSetWindowShouldClose(window, GLFW_TRUE);
+        }
+        engine.stop();
+        windowRenderer.waitIdle();
+        gpuMesh.reset();
+    }
+    context.reset();  // leaked objects are reported as the device goes
+    if (const std::size_t n = *validationMessages; n > 0) {
+        std::fprintf(stderr, "radiosity-viewer: the Vulkan validation layer reported %zu message(s)\n", n);
+        exitCode = 1;
+    }
+    return exitCode;
+}
+
+}  // namespace rad::viewer

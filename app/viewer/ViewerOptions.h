@@ -1,0 +1,39 @@
+#pragma once
+// The viewer's command line.
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "Engine.h"
+
+namespace rad::viewer {
+
+struct ViewerOptions {
+    std::string scene;
+    int width = 1200, height = 760;
+    double targetFps = 30.0;
+    double exposure = 0.0;
+    EngineSettings engine;
+    SnapshotOverlays overlays;
+    std::string select;
+    // Test hooks.
+    std::vector<std::pair<double, std::string>> screenshots;  // (seconds, path)
+    std::optional<double> quitAfter;
+    bool logTransforms = false;
+    bool printGizmo = false;
+    std::optional<int> headlessStress;
+};
+
+// Parses argv; throws std::invalid_argument with a one-line message. Sets
+// help when --help was given.
+ViewerOptions parseViewerArgs(int argc, char** argv, bool& help);
+const char* viewerHelp();
+
+// The window (returns the exit code).
+int runViewer(const ViewerOptions& options);
+// --headless-stress N: the engine thread without a window.
+int runHeadlessStress(const ViewerOptions& options);
+
+}  // namespace rad::viewer

@@ -1,0 +1,190 @@
+// The viewer driven as a person would: a real window on Xvfb, screenshots,
+// mouse drags with xdotool; and the engine thread under load without a window.
+// Every run has the validation layer on and a time limit.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+#include "support/Cli.h"
+#include "support/TempDir.h"
+
+namespace rad::test {
+namespace {
+
+const std::string kViewer = RADIOSITY_VIEWER;
+const std::string kScene = std::string(RADIOSITY_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+const std::string kXvfb = "xvfb-run -a -s '-screen 0 1280x800x24' ";
+
+struct ProcessResult {
+    int exitCode = -1;
+    std::string output;
+};
+
+ProcessResult run(const std::string& command) {
+    ProcessResult r;
+    std::string full = "RADIOSITY_VALIDATION=1 ";
+    full += command;
+    full += " 2>&1";
+    FILE* pipe = popen(full.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf{};
+    while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
+    const int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+// An 8-bit RGB picture read through ImageMagick (PNG -> binary PPM).
+struct Picture {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;
+    const unsigned char* at(int x, int y) const { return &rgb[3 * (std::size_t(y) * width + x)]; }
+};
+
+Picture readPicture(const std::string& png) {
+    Picture p;
+    const std::string ppm = png + ".ppm";
+    if (std::system(("convert " + shellQuote(png) + " -strip " + shellQuote(ppm)).c_str()) != 0) return p;
+    std::ifstream in(ppm, std::ios::binary);
+    // Header: P6 width height maxval, with optional # comment lines between.
+    auto token = [&in] {
+        std::string t;
+        while (in >> t && t[0] == '#') std::getline(in, t);
+        return t;
+    };
+    const std::string magic = token();
+    p.width = std::atoi(token().c_str());
+    p.height = std::atoi(token().c_str());
+    const int maxValue = std::atoi(token().c_str());
+    in.get();
+    if (magic != "P6" || maxValue != 255) return {};
+    p.rgb.resize(std::size_t(p.width) * p.height * 3);
+    in.read(reinterpret_cast<char*>(p.rgb.data()), static_cast<std::streamsize>(p.rgb.size()));
+    return p;
+}
+
+template <typename Pred>
+int countPixels(const Picture& p, int x0, int y0, int x1, int y1, Pred pred) {
+    int n = 0;
+    for (int y = y0; y < y1 && y < p.height; ++y)
+        for (int x = x0; x < x1 && x < p.width; ++x) n += pred(p.at(x, y)) ? 1 : 0;
+    return n;
+}
+
+double meanAbsDifference(const Picture& a, const Picture& b, int x0, int y0, int x1, int y1) {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x, ++n)
+            for (int c = 0; c < 3; ++c) sum += std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c]));
+    return n ? sum / (3.0 * n) : 0.0;
+}
+
+TEST(ViewerTest, WithoutADisplayPointsToTheCli) {
+    const ProcessResult r = run("env -u DISPLAY timeout 20 " + shellQuote(kViewer) + " " + shellQuote(kScene));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(r.output,
+              "radiosity-viewer: no display (DISPLAY is not set); use radiosity-cli for headless work "
+              "(radiosity-cli --help)\n");
+}
+
+TEST(ViewerTest, HelpListsEveryOption) {
+    const ProcessResult r = run("timeout 20 " + shellQuote(kViewer) + " --help");
+    EXPECT_EQ(r.exitCode, 0);
+    for (const char* option : {"--screenshot-after", "--quit-after", "--log-transforms", "--select",
+                               "--print-gizmo", "--overlays", "--headless-stress", "--target-fps",
+                               "--epsilon", "RADIOSITY_TSAN"})
+        EXPECT_NE(r.output.find(option), std::string::npos) << option;
+}
+
+TEST(ViewerTest, WindowShowsTheSolvedSceneAndThePanel) {
+    ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    TempDir dir;
+    const std::string png = (dir / "window.png").string();
+    const ProcessResult r = run("timeout 60 " + kXvfb + shellQuote(kViewer) + " " + shellQuote(kScene) +
+                      " --screenshot-after 1.5 " + shellQuote(png) + " --quit-after 2.5");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const Picture p = readPicture(png);
+    ASSERT_EQ(p.width, 1200) << r.output;
+    ASSERT_EQ(p.height, 760);
+
+    // The scene (right of the panel): the red and the green wall, and not one colour.
+    const int red = countPixels(p, 400, 60, 1200, 760, [](const unsigned char* c) {
+        return c[0] > 60 && c[0] > c[1] + 40 && c[0] > c[2] + 40;
+    });
+    const int green = countPixels(p, 400, 60, 1200, 760, [](const unsigned char* c) {
+        return c[1] > 40 && c[1] > c[0] + 15 && c[1] > c[2] + 20;
+    });
+    EXPECT_GT(red, 5000) << "red wall";
+    EXPECT_GT(green, 5000) << "green wall";
+
+    // The panel (top left): ImGui's dark window background and its blue frames.
+    const int area = 330 * 300;
+    const int dark = countPixels(p, 20, 40, 350, 340, [](const unsigned char* c) {
+        return c[0] < 45 && c[1] < 45 && c[2] < 55 && std::abs(int(c[0]) - int(c[1])) < 12;
+    });
+    const int blue = countPixels(p, 20, 40, 350, 340, [](const unsigned char* c) {
+        return c[2] > c[0] + 25 && c[2] > 50;
+    });
+    EXPECT_GT(dark, area / 3) << "panel background";
+    EXPECT_GT(blue, area / 20) << "panel widgets";
+}
+
+TEST(ViewerTest, DraggingTheGizmoMovesTheBlockAndItsShadow) {
+    ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    ASSERT_EQ(std::system("command -v xdotool >/dev/null && command -v xwd >/dev/null"), 0)
+        << "xdotool and xwd (x11-apps) are needed";
+    TempDir dir;
+    const std::string script = std::string(RADIOSITY_SOURCE_DIR) + "/tests/viewer/drag_gizmo.sh";
+    const ProcessResult r = run("timeout 90 " + kXvfb + shellQuote(script) + " " + shellQuote(kViewer) + " " +
+                      shellQuote(kScene) + " " + shellQuote(dir.path().string()));
+    const std::string log = readFile((dir / "viewer.log").string());
+    ASSERT_NE(r.output.find("viewer-exit 0"), std::string::npos) << r.output << log;
+
+    // The engine thread received the drag.
+    std::size_t transforms = 0;
+    for (std::size_t at = log.find("engine: transform short-block"); at != std::string::npos;
+         at = log.find("engine: transform short-block", at + 1))
+        ++transforms;
+    EXPECT_GE(transforms, 1u) << log;
+
+    const Picture before = readPicture((dir / "before.png").string());
+    const Picture after = readPicture((dir / "after.png").string());
+    const Picture overlays = readPicture((dir / "overlays.png").string());
+    ASSERT_GE(before.width, 1000);
+    ASSERT_EQ(after.width, before.width);
+    ASSERT_EQ(overlays.width, before.width);
+
+    // The floor right of the block (floor in both pictures) lost the shadow.
+    EXPECT_GT(meanAbsDifference(before, after, 815, 690, 900, 735), 2.0);
+    // The back wall high up, far from the block, stays as it was.
+    EXPECT_LT(meanAbsDifference(before, after, 700, 150, 800, 250), 1.0);
+
+    // L and C turned on the overlays: yellow links (linear 1, 0.85, 0.1) and
+    // red changed elements (linear 1, 0.1, 0.1), sRGB-encoded on screen.
+    auto yellow = [](const unsigned char* c) { return c[0] > 220 && c[1] > 200 && c[2] < 130; };
+    auto red = [](const unsigned char* c) {
+        return c[0] > 220 && c[1] > 60 && c[1] < 110 && c[2] > 60 && c[2] < 110;
+    };
+    EXPECT_GT(countPixels(overlays, 400, 0, 1200, 760, yellow),
+              countPixels(after, 400, 0, 1200, 760, yellow) + 500);
+    EXPECT_GT(countPixels(overlays, 400, 0, 1200, 760, red), countPixels(after, 400, 0, 1200, 760, red) + 50);
+}
+
+TEST(ViewerTest, EngineThreadHeadlessStress) {
+    const ProcessResult r = run("timeout 120 " + shellQuote(kViewer) + " " + shellQuote(kScene) + " --headless-stress 300");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("headless-stress: 300 transforms sent"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace rad::test

@@ -1,0 +1,61 @@
+#pragma once
+// The viewer's control panel (Dear ImGui). Thin and engine-agnostic: the
+// program fills PanelState from its snapshot each frame, the panel draws it
+// and reports what the user asked for in PanelActions.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace rad::ui {
+
+struct PanelState {
+    std::string sceneName;
+    std::string status;  // "solving: round 2 ..." / "solved" / an error
+    bool error = false;
+    bool solving = false;
+
+    // Statistics.
+    std::size_t polygons = 0, elements = 0, links = 0, passiveLinks = 0;
+    std::size_t memoryBytes = 0;
+    double solveSeconds = 0.0;
+    std::size_t budget = 0;  // link updates per frame
+    bool budgetUnlimited = false;
+    std::size_t moves = 0, pending = 0, linksUpdated = 0;
+    double lastUpdateMs = 0.0;
+    std::vector<float> updateMs;  // the last seconds of updates, oldest first
+
+    // Selection.
+    std::string selected;  // empty: nothing selected
+    bool movable = false;
+    std::string selectionNote;
+
+    std::string lastMessage;  // "saved x.png", errors from the buttons
+};
+
+struct PanelControls {
+    // Edited in place by the panel.
+    float targetFps = 30.0f;   // 1..60
+    float epsilon = 2e-4f;
+    float exposure = 0.0f;     // EV
+    bool showLinks = false;
+    bool showChanged = false;
+};
+
+struct PanelActions {
+    bool targetFpsChanged = false;
+    bool epsilonCommitted = false;  // on release of the slider
+    bool overlaysChanged = false;
+    bool exposureChanged = false;
+    bool saveScreenshot = false;
+    bool exportMesh = false;
+};
+
+// Draws the panel window at the top left.
+PanelActions drawPanels(const PanelState& state, PanelControls& controls);
+
+// Converts the current ImGui style's colours from sRGB to linear, for a
+// swapchain whose hardware encodes to sRGB (otherwise the panel looks washed out).
+void linearizeStyleColors();
+
+}  // namespace rad::ui
