@@ -20,4 +20,10 @@ run_suite build -DCMAKE_BUILD_TYPE=Release
 # Leak checking is off: the Vulkan driver keeps process-lifetime allocations.
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   run_suite build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRADIOSITY_SANITIZE=ON
+# The engine thread under ThreadSanitizer: the viewer's headless stress mode
+# sends transforms from another thread while snapshots are read.
+echo "== ThreadSanitizer: engine thread"
+cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRADIOSITY_TSAN=ON -DRADIOSITY_WERROR=ON >/dev/null
+cmake --build build-tsan -j"$jobs" --target radiosity-viewer
+TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build-tsan/app/radiosity-viewer --headless-stress 300
 echo "All test suites passed."
