@@ -40,27 +40,7 @@ bool finiteEnergy(const EnergyBalance& e) {
            std::isfinite(e.reflected) && e.emitted > 0.0;
 }
 
-// The room of line_space_update_test.cpp: a closed 4 x 3 x 4 m room, a light
-// on the ceiling, a dynamic block above the floor; every vertex times `scale`.
-// `blockOffset` moves the block off the light's edge lines and the binary
-// grid of the subdivision.
-Scene roomWithBlock(double scale = 1.0, V blockOffset = V(0.0)) {
-    Scene s;
-    s.sourcePath = "room-with-block";
-    const auto white = test::addMaterial(s, V(0.7), V(0.0), "white");
-    const auto grey = test::addMaterial(s, V(0.5, 0.4, 0.3), V(0.0), "block");
-    const auto light = test::addMaterial(s, V(0.0), V(10.0), "light");
-    const auto faces = test::boxFaces(V(0.0), V(4.0, 3.0, 4.0), true);
-    const char* names[] = {"floor", "ceiling", "wall-x0", "wall-x4", "wall-z0", "wall-z4"};
-    for (int i = 0; i < 6; ++i) test::addQuadObject(s, names[i], white, {faces[i]});
-    test::addQuadObject(s, "light", light,
-                        {{V(1.5, 2.999, 1.5), V(2.5, 2.999, 1.5), V(2.5, 2.999, 2.5), V(1.5, 2.999, 2.5)}});
-    test::addQuadObject(s, "block", grey, test::boxFaces(V(1.5, 0.2, 1.5), V(2.2, 0.9, 2.2), false), true);
-    for (Polygon& p : s.polygons)
-        for (int k = 0; k < p.vertexCount; ++k)
-            p.vertices[k] = scale * (p.vertices[k] + (s.objects[p.object].name == "block" ? blockOffset : V(0.0)));
-    return s;
-}
+using test::roomWithBlock;
 
 Scene cornellBox() { return loadGltf(test::sourcePath("scenes/cornell-box.gltf")); }
 

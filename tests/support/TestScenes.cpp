@@ -73,6 +73,24 @@ Scene closedBox(double rho) {
     return s;
 }
 
+Scene roomWithBlock(double scale, glm::dvec3 blockOffset) {
+    using V = glm::dvec3;
+    Scene s;
+    s.sourcePath = "room-with-block";
+    const auto white = addMaterial(s, V(0.7), V(0.0), "white");
+    const auto grey = addMaterial(s, V(0.5, 0.4, 0.3), V(0.0), "block");
+    const auto light = addMaterial(s, V(0.0), V(10.0), "light");
+    const auto faces = boxFaces(V(0.0), V(4.0, 3.0, 4.0), true);
+    const char* names[] = {"floor", "ceiling", "wall-x0", "wall-x4", "wall-z0", "wall-z4"};
+    for (int i = 0; i < 6; ++i) addQuadObject(s, names[i], white, {faces[i]});
+    addQuadObject(s, "light", light, {{V(1.5, 2.999, 1.5), V(2.5, 2.999, 1.5), V(2.5, 2.999, 2.5), V(1.5, 2.999, 2.5)}});
+    const std::uint32_t block = addQuadObject(s, "block", grey, boxFaces(V(1.5, 0.2, 1.5), V(2.2, 0.9, 2.2), false), true);
+    for (Polygon& p : s.polygons)
+        for (int k = 0; k < p.vertexCount; ++k)
+            p.vertices[k] = scale * (p.vertices[k] + (p.object == block ? blockOffset : V(0.0)));
+    return s;
+}
+
 std::string sourcePath(const std::string& relative) { return std::string(RADIOSITY_SOURCE_DIR) + "/" + relative; }
 
 }  // namespace rad::test

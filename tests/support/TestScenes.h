@@ -28,6 +28,11 @@ Scene perpendicularSquares(double rho);
 // Closed unit cube, all faces emitting E = 1 with reflectance rho, inwards.
 Scene closedBox(double rho);
 
+// A closed 4 x 3 x 4 m room (inward faces), a light on the ceiling and a
+// dynamic block ("block", six outward faces) above the floor; every vertex
+// times `scale`; `blockOffset` moves the block before scaling.
+Scene roomWithBlock(double scale = 1.0, glm::dvec3 blockOffset = glm::dvec3(0.0));
+
 std::string sourcePath(const std::string& relative);
 
 }  // namespace rad::test

@@ -51,23 +51,7 @@ UpdateSettings withBudget(std::size_t budget) {
 
 std::string budgetName(std::size_t budget) { return budget == kUnlimited ? "unlimited" : std::to_string(budget); }
 
-// A closed 4 x 3 x 4 m room (inward faces), a light on the ceiling and a
-// dynamic block of six outward faces floating above the floor (as in
-// line_space_update_test.cpp).
-Scene roomWithBlock() {
-    Scene s;
-    s.sourcePath = "room-with-block";
-    const auto white = test::addMaterial(s, V(0.7), V(0.0), "white");
-    const auto grey = test::addMaterial(s, V(0.5, 0.4, 0.3), V(0.0), "block");
-    const auto light = test::addMaterial(s, V(0.0), V(10.0), "light");
-    const auto faces = test::boxFaces(V(0.0), V(4.0, 3.0, 4.0), true);
-    const char* names[] = {"floor", "ceiling", "wall-x0", "wall-x4", "wall-z0", "wall-z4"};
-    for (int i = 0; i < 6; ++i) test::addQuadObject(s, names[i], white, {faces[i]});
-    test::addQuadObject(s, "light", light,
-                        {{V(1.5, 2.999, 1.5), V(2.5, 2.999, 1.5), V(2.5, 2.999, 2.5), V(1.5, 2.999, 2.5)}});
-    test::addQuadObject(s, "block", grey, test::boxFaces(V(1.5, 0.2, 1.5), V(2.2, 0.9, 2.2), false), true);
-    return s;
-}
+using test::roomWithBlock;
 
 EngineSettings coarse() {
     EngineSettings settings;
