@@ -26,4 +26,6 @@ echo "== ThreadSanitizer: engine thread"
 cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRADIOSITY_TSAN=ON -DRADIOSITY_WERROR=ON >/dev/null
 cmake --build build-tsan -j"$jobs" --target radiosity-viewer
 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build-tsan/app/radiosity-viewer --headless-stress 300
+# and an object not marked dynamic, attached to the root on that thread.
+TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build-tsan/app/radiosity-viewer --select tall-block --headless-stress 100
 echo "All test suites passed."

@@ -13,6 +13,8 @@
 #include "refine/Refiner.h"
 #include "snapshot/RadiositySnapshot.h"
 #include "update/BudgetControl.h"
+#include "update/Obstacles.h"
+#include "update/Reinsertion.h"
 
 namespace rad {
 namespace {
@@ -60,7 +62,6 @@ struct Engine::State {
             (object && scene.polygons[p].object == *object ? dynamicPolygons : staticPolygons).push_back(p);
         rays.setLayer(Layer::Static, scene, staticPolygons);
         rays.setLayer(Layer::Dynamic, scene, dynamicPolygons);
-        refiner.setDynamicRange(object ? std::optional(hierarchy[hierarchy.objectCluster(*object)].range) : std::nullopt);
         if (object) {
             const Object& o = scene.objects[*object];
             original.assign(scene.polygons.begin() + o.firstPolygon,
@@ -180,15 +181,21 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
     State& s = *state_;
     const std::optional<std::uint32_t> object = s.scene.findObject(name);
     if (!object) throw std::invalid_argument("no object named '" + name + "' in " + s.scene.sourcePath);
-    if (!s.scene.objects[*object].dynamic)
-        throw std::invalid_argument("object '" + name + "' is not marked dynamic (extras.dynamic) in " +
-                                    s.scene.sourcePath + "; only those can be moved");
-    if (s.dynamic == object) return {};
-    const Aabb before = s.dynamic ? s.scene.objectBounds(*s.dynamic) : Aabb{};
-    s.chooseDynamic(object);
-    if (!s.solved) return {};
     const ElementId cluster = s.hierarchy.objectCluster(*object);
-    return s.updater.update(before, s.scene.objectBounds(*object), s.hierarchy[cluster].range, settings, true);
+    if (cluster == kNone) throw std::invalid_argument("object '" + name + "' in " + s.scene.sourcePath + " has no polygons to move");
+    if (s.dynamic == object) return {};
+    const auto start = std::chrono::steady_clock::now();
+    const Aabb before = s.dynamic ? s.scene.objectBounds(*s.dynamic) : Aabb{};
+    // The layers first: the object's new links split their visibility by them.
+    s.chooseDynamic(object);
+    const ReinsertionStats r = reinsertUnderRoot(s.hierarchy, s.links, s.refiner, cluster);
+    if (!s.solved) return {};
+    const double reinsertSeconds = secondsSince(start);
+    FrameStats f = s.updater.update(before, s.scene.objectBounds(*object), s.hierarchy[cluster].range, settings, true);
+    f.reinsertion = r;
+    f.updateSeconds += reinsertSeconds;
+    f.totalSeconds += reinsertSeconds;
+    return f;
 }
 
 FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const UpdateSettings& settings) {
@@ -207,6 +214,7 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
                                             "' is not a finite rigid motion (rotation and translation)");
 
     const Aabb before = s.scene.objectBounds(*s.dynamic);
+    const glm::dmat4 oldToNew = worldFromLocal * glm::inverse(s.scene.objects[*s.dynamic].worldFromLocal);
     Object& o = s.scene.objects[*s.dynamic];
     const glm::dmat4 delta = worldFromLocal * glm::inverse(s.originalWorld);
     for (std::uint32_t i = 0; i < o.polygonCount; ++i) {
@@ -219,6 +227,7 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
     s.hierarchy.refreshAncestors(cluster);
     s.refiner.refreshClusterSamples(cluster);
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
+    s.updater.setObstacles(motionObstacles(s.scene, *s.dynamic, before, oldToNew));
     const FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
     s.budget.record(stats.spent, stats.totalSeconds);
     return stats;

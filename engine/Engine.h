@@ -77,12 +77,16 @@ public:
     const SolveStats& solve(const Progress& progress = {});
 
     // The dynamic object: the first object marked dynamic in the scene, until
-    // another candidate is chosen.
+    // another is chosen.
     std::optional<std::uint32_t> dynamicObject() const;
-    // Chooses another dynamic-object candidate (an object marked dynamic in
-    // the scene): the visibility of the links around the old and the new one
-    // is split again by a line-space traversal, not by a re-solve. Throws
-    // std::invalid_argument naming the object when it is not a candidate.
+    // Chooses any object with polygons as the dynamic one. Its cluster is
+    // attached to the root if it is not there yet (see update/Reinsertion.h:
+    // only its own links and those of its former ancestor clusters change),
+    // then the visibility of the links around the old and the new dynamic
+    // object is split again by a line-space traversal, not by a re-solve.
+    // Objects marked dynamic in the file start under the root, so choosing
+    // them costs the traversal only. Throws std::invalid_argument naming the
+    // object when there is no such object or it has no polygons.
     FrameStats setDynamicObject(const std::string& name, const UpdateSettings& settings = {});
     // Moves the dynamic object to a rigid world transform (its transform in the
     // file is the starting one) and updates the solution incrementally.

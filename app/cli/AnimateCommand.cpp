@@ -129,7 +129,13 @@ int runAnimate(const std::vector<std::string>& argv) {
     const AnimationRun run = runAnimation(
         scene, settings, request.object, request.motion, request.frames, control, compare ? &references : nullptr,
         [&](int f, const Engine& engine, const FrameRecord* record) {
-            if (record) {
+            if (f == 0 && !engine.scene().objects[*engine.dynamicObject()].dynamic) {
+                const ReinsertionStats& r = record->stats.reinsertion;
+                std::printf("'%s' is not marked dynamic: its cluster was attached to the root and relinked "
+                            "(%zu links removed, %zu created) in %.3f s\n",
+                            request.object.c_str(), r.removed, r.created, record->stats.totalSeconds);
+            }
+            if (record && f > 0) {
                 const FrameStats& st = record->stats;
                 std::printf("frame %d: %.3f s (traversal %.3f, update %.3f, push-pull %.3f), %zu candidates, %zu refined\n",
                             f, st.totalSeconds, st.traversalSeconds, st.updateSeconds, st.pushPullSeconds,
@@ -154,6 +160,16 @@ int runAnimate(const std::vector<std::string>& argv) {
     j.value("links", run.initial.links);
     j.value("passive_links", run.initial.passiveLinks);
     j.value("elements", run.initial.elements);
+    j.endObject();
+    // Choosing the object after the solve (paper sec. 3.3).
+    j.beginObject("selection");
+    j.value("marked_dynamic", run.markedDynamic);
+    j.value("seconds", run.selection.totalSeconds);
+    j.value("links_removed", run.selection.reinsertion.removed);
+    j.value("links_recomputed", run.selection.reinsertion.recomputed);
+    j.value("links_created", run.selection.reinsertion.created);
+    j.value("shaft_tests", run.selection.shaftTests);
+    j.value("candidates", run.selection.candidates);
     j.endObject();
     j.beginArray("frames");
     std::vector<double> totals, fullTimes, errors;

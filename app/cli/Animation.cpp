@@ -30,7 +30,7 @@ double median(std::vector<double> v) {
 
 const std::vector<OptionSpec>& motionOptions() {
     static const std::vector<OptionSpec> options{
-        {"--object", "NAME", "the object to move (marked dynamic in the scene; required)"},
+        {"--object", "NAME", "the object to move, any object with polygons (required)"},
         {"--frames", "N", "number of equal steps of the motion, 1..100000 (required)"},
         {"--translate", "X,Y,Z", "total translation in metres (repeatable, summed)"},
         {"--rotate", "AX,AY,AZ,DEG", "total rotation about the axis through the object's bounding-box centre (repeatable)"},
@@ -79,10 +79,19 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
     run.solveSeconds = secondsSince(start);
     run.initial = engine.stats();
     if (!run.initial.converged) throw std::runtime_error("the initial solve did not converge: " + run.initial.message);
-    engine.setDynamicObject(objectName);
+    run.markedDynamic = engine.scene().objects[*object].dynamic;
+    try {
+        run.selection = engine.setDynamicObject(objectName);
+    } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(e.what());
+    }
     const glm::dmat4 startTransform = engine.scene().objects[*object].worldFromLocal;
     const glm::dvec3 center = engine.scene().objectBounds(*object).center();
-    if (onFrame) onFrame(0, engine, nullptr);
+    if (onFrame) {
+        FrameRecord chosen;
+        chosen.stats = run.selection;
+        onFrame(0, engine, &chosen);
+    }
 
     for (int f = 1; f <= frames; ++f) {
         FrameRecord record;

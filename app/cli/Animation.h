@@ -42,6 +42,10 @@ struct FrameRecord {
 struct AnimationRun {
     double solveSeconds = 0.0;
     SolveStats initial;
+    // Choosing the object after the solve: for one not marked dynamic in
+    // the file, its cluster is attached to the root and relinked.
+    FrameStats selection;
+    bool markedDynamic = false;
     std::vector<FrameRecord> frames;
 };
 
@@ -55,7 +59,8 @@ struct References {
 // Solves `scene`, chooses `object` as the dynamic object and plays the motion.
 // With `references` (empty on the first call, filled by it) every frame is
 // compared with a from-scratch solve. `onFrame` sees the engine after each
-// frame, with its record (frame 0: the initial solution, no record). Throws on bad input.
+// frame, with its record (frame 0: the initial solution, with the choice of
+// the object as its record). Throws on bad input.
 AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::string& object,
                           const Motion& motion, int frames, const BudgetControlSetting& control,
                           References* references, const std::function<void(int, const Engine&, const FrameRecord*)>& onFrame = {});

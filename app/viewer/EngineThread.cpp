@@ -14,7 +14,7 @@ struct Cancelled {};
 
 // 'name' and the rest of a message (an ostream: GCC 12 reports false
 // -Wrestrict errors on small string concatenations once inlined).
-std::string quoted(const std::string& name, const char* rest) {
+std::string quoted(const std::string& name, const std::string& rest) {
     std::ostringstream out;
     out << '\'' << name << '\'' << rest;
     return out.str();
@@ -133,7 +133,7 @@ void EngineThread::run() {
         s->updateTimes.assign(w.history.begin(), w.history.end());
         const Scene& scene = w.engine ? w.engine->scene() : w.original;
         for (std::uint32_t o = 0; o < scene.objects.size(); ++o)
-            s->objects.push_back({scene.objects[o].name, scene.objects[o].dynamic,
+            s->objects.push_back({scene.objects[o].name, scene.objects[o].polygonCount > 0,
                                   scene.objects[o].worldFromLocal, scene.objectBounds(o)});
         if (w.engine && !w.solving && w.error.empty()) {
             s->solve = w.engine->stats();
@@ -161,11 +161,19 @@ void EngineThread::run() {
         w.selectionNote.clear();
         if (!object) return;
         const Object& o = w.engine->scene().objects[*object];
-        if (!o.dynamic) {
-            w.selectionNote = quoted(o.name, " is not marked dynamic in the scene: it cannot be moved");
+        if (o.polygonCount == 0) {
+            w.selectionNote = quoted(o.name, " has no polygons: it cannot be moved");
             return;
         }
+        // An object not marked dynamic has its cluster attached to the root
+        // here (paper sec. 3.3); the panel shows what that cost.
         if (w.engine->dynamicObject() != object) w.frame = w.engine->setDynamicObject(o.name, w.update());
+        if (w.frame.reinsertion.created > 0) {
+            std::ostringstream note;
+            note << " attached to the root: " << w.frame.reinsertion.removed << " links removed, "
+                 << w.frame.reinsertion.created << " created";
+            w.selectionNote = quoted(o.name, note.str());
+        }
     };
 
     // Builds and solves the engine; re-applies earlier moves and the selection.
@@ -260,10 +268,7 @@ void EngineThread::run() {
                                      << ' ' << t.worldFromLocal[3][2];
                                 w.options.log(line.str());
                             }
-                            if (!o.dynamic) {
-                                w.selectionNote = quoted(o.name, " is not marked dynamic: not moved");
-                                return;
-                            }
+                            if (o.polygonCount == 0) return;
                             if (w.engine->dynamicObject() != t.object)
                                 w.engine->setDynamicObject(o.name, w.update());
                             w.frame = w.engine->moveDynamicObject(t.worldFromLocal, w.update());

@@ -28,7 +28,9 @@ namespace rad::viewer {
 
 struct ObjectInfo {
     std::string name;
-    bool dynamic = false;  // marked dynamic in the scene: the gizmo may move it
+    // Has polygons: the gizmo may move it (any object can become the dynamic
+    // one; those marked dynamic in the file start under the root).
+    bool movable = false;
     glm::dmat4 worldFromLocal{1.0};
     Aabb bounds;
 };
@@ -55,7 +57,7 @@ struct ViewerSnapshot {
     SnapshotOverlays overlays;
     std::vector<ObjectInfo> objects;
     std::optional<std::uint32_t> selected;
-    std::string selectionNote;  // e.g. "not marked dynamic: cannot be moved"
+    std::string selectionNote;  // e.g. why the selection cannot move
     std::vector<UpdateSample> updateTimes;  // moves of the last seconds, oldest first
 };
 

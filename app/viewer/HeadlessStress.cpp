@@ -17,11 +17,13 @@ int runHeadlessStress(const ViewerOptions& options) {
     Scene scene = loadGltf(options.scene);
     std::optional<std::uint32_t> object;
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o)
-        if (scene.objects[o].dynamic && (options.select.empty() || scene.objects[o].name == options.select)) {
+        if (scene.objects[o].polygonCount > 0 &&
+            (options.select.empty() ? scene.objects[o].dynamic : scene.objects[o].name == options.select)) {
             object = o;
             break;
         }
-    if (!object) throw std::runtime_error(options.scene + ": no dynamic object to move");
+    if (!object) throw std::runtime_error(options.scene + (options.select.empty() ? ": no object marked dynamic to move; name one with --select"
+                                                                                 : ": no object named '" + options.select + "' with polygons"));
     const glm::dmat4 start = scene.objects[*object].worldFromLocal;
     const std::string name = scene.objects[*object].name;
     const Aabb box = scene.objectBounds(*object);

@@ -310,7 +310,7 @@ int runViewer(const ViewerOptions& options) {
                 snap->selected && *snap->selected < snap->objects.size() ? &snap->objects[*snap->selected] : nullptr;
             if (selected) {
                 ps.selected = selected->name;
-                ps.movable = selected->dynamic;
+                ps.movable = selected->movable;
             }
             ps.selectionNote = snap->selectionNote;
             ps.lastMessage = lastMessage;
@@ -335,7 +335,7 @@ int runViewer(const ViewerOptions& options) {
 
             // The gizmo on a movable selection.
             ui::GizmoView gv{view.viewProjection(), viewport, cam.position, cam.up};
-            if (selected && selected->dynamic && gpuMesh && !selected->bounds.empty()) {
+            if (selected && selected->movable && gpuMesh && !selected->bounds.empty()) {
                 const std::uint32_t id = *snap->selected;
                 glm::dmat4 current = selected->worldFromLocal;
                 glm::dvec3 center = selected->bounds.center();

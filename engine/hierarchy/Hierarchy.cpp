@@ -66,6 +66,7 @@ Hierarchy::Hierarchy(const Scene& scene, double minArea)
     std::vector<ElementId> top;
     // Each object that may become dynamic sits in its own cluster right under the root.
     for (std::uint32_t o : dynamicObjects) top.push_back(buildObjectCluster(scene, o));
+    movable_ = top;
     if (!staticObjects.empty()) {
         std::vector<glm::dvec3> centers(scene.objects.size());
         for (std::uint32_t o : staticObjects) centers[o] = scene.objectBounds(o).center();
@@ -85,7 +86,7 @@ Hierarchy::Hierarchy(const Scene& scene, double minArea)
     elements_[root_].children = top;
     for (ElementId c : top) elements_[c].parent = root_;
     finishCluster(root_);
-    assignRanges(root_, 0);
+    assignRanges(root_, 0, false);
 }
 
 ElementId Hierarchy::add(HElement e) {
@@ -168,19 +169,70 @@ void Hierarchy::finishCluster(ElementId id) {
     c.center = c.area > 0.0 ? weighted / c.area : c.box.center();
 }
 
-std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first) {
+std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool renumber) {
     HElement& e = elements_[id];
     if (e.isSurface()) {
         const std::string what = "polygon " + std::to_string(e.polygon);
-        const std::uint64_t count = quadtreeIndexCount(e.area, minArea_, what);
+        // Numbered again (attachToRoot), a surface keeps the size it had: its
+        // area after a move may differ by a rounding error, and the depth of
+        // its existing quadtree must stay allowed.
+        const std::uint64_t count = renumber ? e.range.size() : quadtreeIndexCount(e.area, minArea_, what);
         e.range = {first, checkedAdd(first, count - 1, what)};
-        return e.range.last;
+        assignQuadtreeRanges(id);
+        return elements_[id].range.last;
     }
     std::uint64_t last = first;
     for (ElementId c : std::vector<ElementId>(e.children))
-        last = assignRanges(c, checkedAdd(last, 1, "cluster"));
+        last = assignRanges(c, checkedAdd(last, 1, "cluster"), renumber);
     elements_[id].range = {first, last};
     return last;
+}
+
+void Hierarchy::assignQuadtreeRanges(ElementId surface) {
+    const std::vector<ElementId>& kids = elements_[surface].children;
+    for (std::size_t k = 0; k < kids.size(); ++k) {
+        elements_[kids[k]].range = quadtreeChildRange(elements_[surface].range, static_cast<int>(k));
+        assignQuadtreeRanges(kids[k]);
+    }
+}
+
+bool Hierarchy::isMovable(ElementId cluster) const {
+    return std::find(movable_.begin(), movable_.end(), cluster) != movable_.end();
+}
+
+std::vector<ElementId> Hierarchy::ancestorsBelowRoot(ElementId id) const {
+    std::vector<ElementId> out;
+    for (ElementId a = elements_[id].parent; a != kNone && a != root_; a = elements_[a].parent) out.push_back(a);
+    return out;
+}
+
+std::vector<ElementId> Hierarchy::emptiedBy(ElementId cluster) const {
+    std::vector<ElementId> out;
+    for (ElementId a = elements_[cluster].parent; a != kNone && a != root_ && elements_[a].children.size() == 1;
+         a = elements_[a].parent)
+        out.push_back(a);
+    return out;
+}
+
+void Hierarchy::attachToRoot(ElementId cluster) {
+    if (!isMovable(cluster)) movable_.push_back(cluster);
+    if (elements_[cluster].parent == root_) return;
+    // Detach from the lowest ancestor that keeps other children; the empty
+    // ones in between go.
+    const std::vector<ElementId> emptied = emptiedBy(cluster);
+    const ElementId top = emptied.empty() ? cluster : emptied.back();
+    const ElementId parent = elements_[top].parent;
+    std::erase(elements_[parent].children, top);
+    for (ElementId e : emptied) {
+        elements_[e] = HElement{};
+        free_.push_back(e);
+    }
+    finishCluster(parent);
+    refreshAncestors(parent);
+    elements_[cluster].parent = root_;
+    elements_[root_].children.push_back(cluster);
+    finishCluster(root_);
+    assignRanges(root_, 0, true);
 }
 
 bool Hierarchy::canSubdivide(ElementId id) const {

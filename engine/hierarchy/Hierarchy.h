@@ -1,8 +1,9 @@
 #pragma once
 // The H-element hierarchy of a scene: a root cluster; below it one cluster per
-// object that may become dynamic, and a tree of clusters over the others; each
-// object's polygons under its own cluster; polygons subdivided into quadtrees
-// on demand during refinement.
+// object marked dynamic, and a tree of clusters over the others; each object's
+// polygons under a cluster of their own, so that any object can be chosen to
+// move (paper sec. 3.3); polygons subdivided into quadtrees on demand during
+// refinement.
 
 #include <vector>
 
@@ -28,6 +29,23 @@ public:
     ElementId polygonElement(std::uint32_t polygon) const { return polygonElements_[polygon]; }
     // The cluster holding all of one object's polygons.
     ElementId objectCluster(std::uint32_t object) const { return objectClusters_[object]; }
+    // The object clusters right under the root: those that can move without
+    // changing any cluster above them but the root.
+    const std::vector<ElementId>& movableClusters() const { return movable_; }
+    bool isMovable(ElementId cluster) const;
+
+    // Paper sec. 3.3: "When the user selects a dynamic object, the
+    // corresponding cluster is attached to the root of the hierarchy." Moves
+    // an object's cluster from the cluster tree to the root, frees the
+    // clusters this leaves empty (see emptiedBy), recomputes the geometry of
+    // its former ancestors and numbers every index range again. The caller
+    // removes the links of the emptied clusters first.
+    void attachToRoot(ElementId cluster);
+    // The former ancestors that attachToRoot(cluster) would leave without
+    // any child, lowest first.
+    std::vector<ElementId> emptiedBy(ElementId cluster) const;
+    // The clusters strictly between `id` and the root, lowest first.
+    std::vector<ElementId> ancestorsBelowRoot(ElementId id) const;
 
     // The elements holding the point with parametric coordinates uv on an
     // input polygon (the corners' (u,v) as in HElement::param), from the root
@@ -62,7 +80,10 @@ private:
                         const MakeLeaf& makeLeaf);
     ElementId buildObjectCluster(const Scene& scene, std::uint32_t object);
     ElementId makeSurface(const Scene& scene, std::uint32_t polygon);
-    std::uint64_t assignRanges(ElementId id, std::uint64_t first);
+    // renumber: keep each surface's range size (see attachToRoot).
+    std::uint64_t assignRanges(ElementId id, std::uint64_t first, bool renumber);
+    // Gives the existing quadtree below a surface the ranges of its own.
+    void assignQuadtreeRanges(ElementId surface);
     void finishCluster(ElementId id);
 
     const Scene& scene_;  // outlives the hierarchy; polygons move with the dynamic object
@@ -70,6 +91,7 @@ private:
     std::vector<ElementId> free_;
     std::vector<ElementId> polygonElements_;
     std::vector<ElementId> objectClusters_;
+    std::vector<ElementId> movable_;
     ElementId root_ = kNone;
     double minArea_;
 };

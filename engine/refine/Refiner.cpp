@@ -37,9 +37,13 @@ void Refiner::refreshClusterSamples(ElementId subtree) {
     const HElement& c = h_[subtree];
     if (c.isSurface()) return;
     for (ElementId k : c.children) refreshClusterSamples(k);
+    refreshClusterSample(subtree);
+}
+
+void Refiner::refreshClusterSample(ElementId cluster) {
     // The input polygons below this cluster, with their cumulative area.
     std::vector<ElementId> surfaces;
-    std::vector<ElementId> stack{subtree};
+    std::vector<ElementId> stack{cluster};
     while (!stack.empty()) {
         const ElementId e = stack.back();
         stack.pop_back();
@@ -51,7 +55,8 @@ void Refiner::refreshClusterSamples(ElementId subtree) {
     std::vector<double> cumulative;
     double total = 0.0;
     for (ElementId s : surfaces) cumulative.push_back(total += h_[s].area);
-    std::array<glm::dvec3, 4>& out = clusterSamples_[subtree];
+    if (clusterSamples_.size() <= cluster) clusterSamples_.resize(h_.size());
+    std::array<glm::dvec3, 4>& out = clusterSamples_[cluster];
     for (int k = 0; k < 4; ++k) {
         const double target = (k + 0.5) / 4.0 * total;
         const auto it = std::lower_bound(cumulative.begin(), cumulative.end(), target);
@@ -60,10 +65,13 @@ void Refiner::refreshClusterSamples(ElementId subtree) {
     }
 }
 
-bool Refiner::touchesDynamic(ElementId e) const {
-    if (!dynamicRange_) return false;
+bool Refiner::touchesMovable(ElementId e) const {
     const IndexRange& r = h_[e].range;
-    return dynamicRange_->contains(r) || r.contains(*dynamicRange_);
+    for (ElementId m : h_.movableClusters()) {
+        const IndexRange& mr = h_[m].range;
+        if (mr.contains(r) || r.contains(mr)) return true;
+    }
+    return false;
 }
 
 std::vector<glm::dvec3> Refiner::samplePoints(ElementId id) const {
@@ -118,7 +126,7 @@ Link Refiner::compute(ElementId s, ElementId r) const {
     const FormFactorEstimate f = unoccludedFormFactor(s, r);
     l.unoccluded = f.mean;
     l.spread = static_cast<float>(f.max - f.min);
-    const bool dynamic = touchesDynamic(s) || touchesDynamic(r);
+    const bool dynamic = touchesMovable(s) || touchesMovable(r);
     // A cluster pair that is not admissible still needs its link: it is refined next.
     const bool mustRefine = !admissible(s, r);
     if (l.unoccluded <= 0.0 && !dynamic && !mustRefine) return l;  // not live: never carries light
@@ -310,6 +318,10 @@ std::size_t Refiner::refineAll() {
     std::vector<LinkId> wave;
     for (ElementId e = 0; e < h_.size(); ++e)
         for (LinkId l : h_[e].links) wave.push_back(l);
+    return refineAll(std::move(wave));
+}
+
+std::size_t Refiner::refineAll(std::vector<LinkId> wave) {
     std::size_t refined = 0;
     while (!wave.empty()) {
         std::vector<LinkId> batch;

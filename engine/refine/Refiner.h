@@ -29,12 +29,11 @@ class Refiner {
 public:
     Refiner(Hierarchy& hierarchy, LinkStore& links, const RayCaster& rays, RefineSettings settings);
 
-    // The index range of the dynamic object's cluster: links touching it are
-    // kept even when they carry nothing in the current position.
-    void setDynamicRange(std::optional<IndexRange> range) { dynamicRange_ = range; }
     // Recomputes the visibility sample points of the clusters in a subtree
     // (after it moved).
     void refreshClusterSamples(ElementId subtree);
+    // The same for one cluster whose children changed.
+    void refreshClusterSample(ElementId cluster);
 
     // The link s -> r computed but not attached; `live` is false when it
     // carries nothing and never can (facing away, both static).
@@ -62,6 +61,8 @@ public:
     // Refines every active link until the criterion holds everywhere (or the
     // memory cap is met). Returns the number of links refined.
     std::size_t refineAll();
+    // The same for the given active links and the links their refinement makes.
+    std::size_t refineAll(std::vector<LinkId> links);
 
     bool wouldRefine(const Link& link) const;
     // How many links refining this one would create (before dropping those
@@ -88,14 +89,15 @@ private:
     FormFactorEstimate unoccludedFormFactor(ElementId s, ElementId r) const;
     std::vector<glm::dvec3> samplePoints(ElementId e) const;
     void segments(ElementId s, ElementId r, std::vector<glm::dvec3>& from, std::vector<glm::dvec3>& to) const;
-    bool touchesDynamic(ElementId e) const;
+    // Whether e lies in, or holds, an object cluster that can move (under the
+    // root): its links are kept even when they carry nothing where it stands.
+    bool touchesMovable(ElementId e) const;
     std::vector<std::pair<ElementId, ElementId>> childPairs(const Link& link);
 
     Hierarchy& h_;
     LinkStore& links_;
     const RayCaster& rays_;
     RefineSettings settings_;
-    std::optional<IndexRange> dynamicRange_;
     // Per cluster: points on its surfaces, stratified by area, for visibility rays.
     std::vector<std::array<glm::dvec3, 4>> clusterSamples_;
     bool capReached_ = false;

@@ -67,6 +67,7 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
     bounce(std::move(visited), settings, stats);
     stats.pushPullSeconds = since(t);
 
+    obstacles_.clear();
     finish(stats, start);
     return stats;
 }
@@ -147,10 +148,14 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
 
 bool LineSpaceUpdate::affectedByMotion(ElementId s, ElementId r) {
     // Both ends on the object: a rigid motion changes neither the form factor
-    // nor the object's occlusion of its own parts. (Static geometry that ends
-    // up between two of its parts is not seen: the links keep their static
-    // visibility.)
-    if (!layersChanged_ && moved_.contains(h_[s].range) && moved_.contains(h_[r].range)) return false;
+    // nor the object's occlusion of its own parts; only static geometry in
+    // the object (the obstacles) can come between them.
+    if (!layersChanged_ && moved_.contains(h_[s].range) && moved_.contains(h_[r].range)) {
+        if (obstacles_.empty()) return false;
+        ++shaftTests_;
+        const Shaft shaft(h_[s].box, h_[r].box);
+        return std::any_of(obstacles_.begin(), obstacles_.end(), [&](const Aabb& b) { return shaft.intersects(b); });
+    }
     if (touches(moved_, h_[s].range) || touches(moved_, h_[r].range)) return true;
     ++shaftTests_;
     // The shaft is built only when tested: storing one per link would cost

@@ -18,6 +18,7 @@
 
 #include "hierarchy/Hierarchy.h"
 #include "links/Link.h"
+#include "update/Reinsertion.h"
 
 namespace rad {
 
@@ -42,6 +43,7 @@ struct FrameStats {
     std::size_t links = 0;
     std::size_t elements = 0;
     int bounces = 0;
+    ReinsertionStats reinsertion;  // choosing a new dynamic object only
 };
 
 inline constexpr std::size_t kUnlimited = static_cast<std::size_t>(-1);
@@ -70,6 +72,10 @@ public:
     // the visibility of every link the traversal finds are recomputed.
     FrameStats update(const Aabb& oldBox, const Aabb& newBox, const IndexRange& moved,
                       const UpdateSettings& settings, bool layersChanged = false);
+    // For the next update only: static geometry inside the moving object
+    // (see Obstacles.h); links with both ends on it whose shafts meet one
+    // are updated too.
+    void setObstacles(std::vector<Aabb> obstacles) { obstacles_ = std::move(obstacles); }
     // Refines, within the budget, the links a budget left coarse, with no
     // motion (what an idle viewer does between moves).
     FrameStats refinePending(const UpdateSettings& settings);
@@ -133,6 +139,7 @@ private:
 
     // Per frame.
     Aabb oldBox_, newBox_;
+    std::vector<Aabb> obstacles_;
     IndexRange moved_;
     bool layersChanged_ = false;
     std::uint32_t frame_ = 0;

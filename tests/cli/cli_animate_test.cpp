@@ -44,6 +44,27 @@ TEST(CliAnimate, ReportsEveryFrameAndMatchesAFullSolve) {
         EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(images) / ("frame-000" + std::to_string(f) + ".png")));
 }
 
+// Any object can be chosen (paper sec. 3.3): the tall block is not marked
+// dynamic in the file; its cluster goes under the root after the solve.
+TEST(CliAnimate, ObjectNotMarkedDynamicMovesToo) {
+    test::TempDir dir;
+    const std::string report = (dir / "t.json").string();
+    const auto r = runCli("animate " + shellQuote(kCornell) +
+                          " --object tall-block --frames 2 --translate -0.1,0,0.1 --rotate 0,1,0,-10 --compare-full"
+                          " --report " + shellQuote(report));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("'tall-block' is not marked dynamic"), std::string::npos) << r.output;
+    const std::string json = test::readFile(report);
+    EXPECT_NE(json.find("\"marked_dynamic\": false"), std::string::npos) << json;
+    EXPECT_GT(jsonNumber(json, "links_removed"), 0.0);
+    EXPECT_GT(jsonNumber(json, "links_created"), 0.0);
+    // Measured 0.5% and 1.4%, as for the same motion with the block marked
+    // dynamic in the file (tests/update/reinsertion_test.cpp checks the two
+    // agree): this small scene's update error, not the choice's.
+    for (int f = 1; f <= 2; ++f)
+        EXPECT_LE(jsonNumber(json, "rms", json.find("\"frame\": " + std::to_string(f))), 0.02) << "frame " << f;
+}
+
 TEST(CliAnimate, BadArgumentsFailWithOneLine) {
     auto r = runCli("animate " + shellQuote(kCornell) + " --object short-block --frames 2");
     EXPECT_EQ(r.exitCode, 2);
@@ -53,9 +74,6 @@ TEST(CliAnimate, BadArgumentsFailWithOneLine) {
     EXPECT_NE(r.output.find("--translate"), std::string::npos) << r.output;
     r = runCli("animate " + shellQuote(kCornell) + " --object short-block --frames 2 --rotate 0,0,0,10");
     EXPECT_EQ(r.exitCode, 2);
-    r = runCli("animate " + shellQuote(kCornell) + " --object floor --frames 1 --translate 0,0.1,0");
-    EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.output.find("not marked dynamic"), std::string::npos) << r.output;
     r = runCli("animate " + shellQuote(kCornell) + " --object nobody --frames 1 --translate 0,0.1,0");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("nobody"), std::string::npos) << r.output;

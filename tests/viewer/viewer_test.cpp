@@ -186,5 +186,18 @@ TEST(ViewerTest, EngineThreadHeadlessStress) {
     EXPECT_NE(r.output.find("headless-stress: 300 transforms sent"), std::string::npos) << r.output;
 }
 
+// The tall block is not marked dynamic: selecting it attaches its cluster to
+// the root on the engine thread, then it moves like any other.
+TEST(ViewerTest, EngineThreadMovesAnObjectNotMarkedDynamic) {
+    const ProcessResult r = run("timeout 120 " + shellQuote(kViewer) + " " + shellQuote(kScene) +
+                                " --select tall-block --headless-stress 100");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("headless-stress: 100 transforms sent"), std::string::npos) << r.output;
+    const ProcessResult none = run("timeout 60 " + shellQuote(kViewer) + " " + shellQuote(kScene) +
+                                   " --select nobody --headless-stress 10");
+    EXPECT_NE(none.exitCode, 0);
+    EXPECT_NE(none.output.find("'nobody'"), std::string::npos) << none.output;
+}
+
 }  // namespace
 }  // namespace rad::test

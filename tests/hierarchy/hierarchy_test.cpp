@@ -1,0 +1,108 @@
+// The H-element hierarchy: attaching an object's cluster to the root (paper
+// sec. 3.3) must leave a well-formed tree, with index ranges that still nest
+// (sec. 3.2) and cluster boxes and areas that still enclose their children.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "hierarchy/Hierarchy.h"
+#include "scene/GltfImport.h"
+#include "support/TestScenes.h"
+
+namespace rad {
+namespace {
+
+bool holds(const Aabb& outer, const Aabb& inner) {
+    return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) && glm::all(glm::lessThanEqual(inner.hi, outer.hi));
+}
+
+// Checks the subtree of `id` and returns the number of elements in it.
+std::size_t checkSubtree(const Hierarchy& h, ElementId id, std::string& problem) {
+    const HElement& e = h[id];
+    std::size_t count = 1;
+    double area = 0.0;
+    std::uint64_t next = e.range.first + 1;
+    for (std::size_t k = 0; k < e.children.size(); ++k) {
+        const ElementId c = e.children[k];
+        const HElement& child = h[c];
+        if (child.parent != id) problem = "element " + std::to_string(c) + ": wrong parent";
+        if (!e.range.contains(child.range)) problem = "element " + std::to_string(c) + ": range outside its parent's";
+        if (child.range.first < next) problem = "element " + std::to_string(c) + ": range overlaps a sibling's";
+        next = child.range.last + 1;
+        if (e.isSurface()) {
+            const IndexRange expected = quadtreeChildRange(e.range, static_cast<int>(k));
+            if (child.range.first != expected.first || child.range.last != expected.last)
+                problem = "element " + std::to_string(c) + ": not its quadtree range";
+        } else {
+            if (!holds(e.box, child.box))
+                problem = "cluster " + std::to_string(id) + ": box does not hold child " + std::to_string(c);
+            area += child.area;
+        }
+        count += checkSubtree(h, c, problem);
+    }
+    if (!e.isSurface()) {
+        if (e.children.empty()) problem = "cluster " + std::to_string(id) + " is empty";
+        if (std::abs(area - e.area) > 1e-9 * std::max(1.0, area)) problem = "cluster " + std::to_string(id) + ": area";
+    }
+    return count;
+}
+
+TEST(Hierarchy, AttachToRootKeepsTheTreeWellFormed) {
+    const Scene scene = loadGltf(test::sourcePath("scenes/office.gltf"));
+    Hierarchy h(scene, 1e-4);
+    const std::uint32_t desk = *scene.findObject("desk-1");
+    const ElementId cluster = h.objectCluster(desk);
+    ASSERT_NE(h[cluster].parent, h.root());
+    // Some subdivision below the desk and elsewhere, whose ranges must follow.
+    h.subdivide(h.polygonElement(scene.objects[desk].firstPolygon));
+    h.subdivide(h[h.polygonElement(scene.objects[desk].firstPolygon)].children[2]);
+    h.subdivide(h.polygonElement(0));
+    const std::size_t elements = h.liveCount();
+    const std::uint64_t indices = h[h.root()].range.size();
+    const std::size_t movableBefore = h.movableClusters().size();
+    EXPECT_TRUE(h.emptiedBy(cluster).empty());
+
+    h.attachToRoot(cluster);
+    EXPECT_EQ(h[cluster].parent, h.root());
+    EXPECT_TRUE(h.isMovable(cluster));
+    EXPECT_EQ(h.movableClusters().size(), movableBefore + 1);
+    std::string problem;
+    EXPECT_EQ(checkSubtree(h, h.root(), problem), elements);
+    EXPECT_TRUE(problem.empty()) << problem;
+    EXPECT_EQ(h.liveCount(), elements);
+    EXPECT_EQ(h[h.root()].range.size(), indices);  // the same elements, numbered again
+    // The desk's path of elements is found from the root.
+    const auto path = h.pathTo(scene.objects[desk].firstPolygon, glm::dvec2(0.75, 0.75));
+    ASSERT_GE(path.size(), 4u);
+    EXPECT_EQ(path[0], h.root());
+    EXPECT_EQ(path[1], cluster);
+}
+
+TEST(Hierarchy, AttachToRootFreesTheClustersItEmpties) {
+    Scene s;
+    const auto white = test::addMaterial(s, glm::dvec3(0.5), glm::dvec3(0.0));
+    const auto light = test::addMaterial(s, glm::dvec3(0.0), glm::dvec3(1.0));
+    test::addQuadObject(s, "room", white, test::boxFaces(glm::dvec3(0.0), glm::dvec3(2.0), true));
+    test::addQuadObject(s, "lamp", light, test::boxFaces(glm::dvec3(0.8), glm::dvec3(1.2), false), true);
+    Hierarchy h(s, 1e-3);
+    const ElementId room = h.objectCluster(0);
+    const auto emptied = h.emptiedBy(room);
+    ASSERT_EQ(emptied.size(), 1u);  // the tree over the static objects holds the room alone
+    const std::size_t elements = h.liveCount();
+    h.attachToRoot(room);
+    EXPECT_EQ(h.liveCount(), elements - 1);
+    EXPECT_EQ(h[h.root()].children.size(), 2u);  // the lamp and the room
+    std::string problem;
+    EXPECT_EQ(checkSubtree(h, h.root(), problem), elements - 1);
+    EXPECT_TRUE(problem.empty()) << problem;
+    // Attaching again changes nothing.
+    h.attachToRoot(room);
+    EXPECT_EQ(h.liveCount(), elements - 1);
+    EXPECT_EQ(h.movableClusters().size(), 2u);
+}
+
+}  // namespace
+}  // namespace rad
