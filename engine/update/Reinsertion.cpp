@@ -104,10 +104,11 @@ std::size_t linkUnderRoot(const Hierarchy& h, LinkStore& links, Refiner& refiner
 
 ReinsertionStats reinsertUnderRoot(Hierarchy& h, LinkStore& links, Refiner& refiner, ElementId cluster) {
     ReinsertionStats stats;
-    if (h[cluster].parent == h.root()) {
-        h.attachToRoot(cluster);  // only marks it movable
-        return stats;
-    }
+    // Movable clusters are under the root and were linked as such (links
+    // that carry nothing where they stand were kept: a move may change that).
+    // A cluster of the static tree right under the root (small scenes) still
+    // needs those links, so it is relinked too.
+    if (h.isMovable(cluster)) return stats;
     const bool linked = links.liveCount() > 0;
     const std::vector<ElementId> emptied = h.emptiedBy(cluster);
     std::vector<ElementId> ancestors;  // those that stay, lowest first

@@ -41,7 +41,8 @@ struct ReinsertionStats {
 
 // Attaches the object cluster `cluster` to the root and relinks it; the
 // receivers whose irradiance changed are left dirty in the refiner for the
-// caller's partial push-pull. A cluster already under the root is left as it is.
+// caller's partial push-pull. A movable cluster (Hierarchy::movableClusters)
+// is left as it is.
 ReinsertionStats reinsertUnderRoot(Hierarchy& hierarchy, LinkStore& links, Refiner& refiner, ElementId cluster);
 
 }  // namespace rad

@@ -210,6 +210,35 @@ TEST(Reinsertion, SameAsAnObjectMarkedDynamic) {
     expectCovered(chosen, block, "tall block after three moves");
 }
 
+// Two objects, none marked dynamic: the cluster tree over them is folded into
+// the root, so the plate's cluster is under the root already. Its links that
+// carried nothing (it faces away from the light) were dropped by the solve;
+// choosing it must bring them back, or turning it to the light finds no link.
+TEST(Reinsertion, ClusterAlreadyUnderTheRootIsRelinked) {
+    Scene s;
+    s.sourcePath = "plate-under-light";
+    const auto grey = test::addMaterial(s, V(0.5), V(0.0), "grey");
+    const auto light = test::addMaterial(s, V(0.0), V(1.0), "light");
+    test::addQuadObject(s, "light", light, {{V(0, 1, 0), V(1, 1, 0), V(1, 1, 1), V(0, 1, 1)}});
+    test::addQuadObject(s, "plate", grey, {{V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1)}});  // faces down
+    EngineSettings settings;
+    settings.epsilon = 1e-3;
+    Engine engine(s, settings);
+    ASSERT_TRUE(engine.solve().converged);
+    const FrameStats chosen = engine.setDynamicObject("plate");
+    EXPECT_GT(chosen.reinsertion.created, 0u);
+    engine.moveDynamicObject(rotationAbout(V(0.5, 0.0, 0.5), V(1, 0, 0), 180.0));  // now it faces the light
+    const std::uint32_t plate = objectIndex(engine, "plate");
+    const double lit = engine.objectRadiosity()[plate].radiosity.y;
+    Engine full(engine.scene(), settings);
+    full.solve();
+    const double expected = full.objectRadiosity()[plate].radiosity.y;
+    std::printf("  plate turned to the light: B %.5f, full solve %.5f\n", lit, expected);
+    EXPECT_GT(expected, 0.05);
+    EXPECT_NEAR(lit, expected, 0.01 * expected);
+    expectCovered(engine, plate, "the plate turned");
+}
+
 TEST(Reinsertion, ObjectWithoutPolygonsIsRefused) {
     Scene s = test::roomWithBlock();
     Object empty;
