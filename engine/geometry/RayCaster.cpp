@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -48,30 +49,36 @@ double maxAbs(const glm::dvec3& p) {
     return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
 }
 
+// A segment a -> a + d, and the window of its parameter in which a hit blocks it.
+struct Segment {
+    glm::dvec3 a;
+    glm::dvec3 d;
+    double tMin, tMax;
+};
+
 // Embree finds candidate hits in float; each candidate of an occlusion query is then checked
 // here in double precision against the triangle's plane, so that hits at the segment's own end
 // points (which lie on surfaces) are rejected however grazing the segment is. An Embree 3
 // intersect context extended by the query's data (the documented way to pass per-ray data to a
-// filter function; the base must come first).
+// filter function; the base must come first); a ray's id indexes its segment.
 struct SegmentContext {
     RTCIntersectContext base;
     const std::vector<glm::dvec4>* planes;  // per triangle: unnormalised normal n, and n . v0
-    glm::dvec3 a;                           // segment start
-    glm::dvec3 d;                           // segment end minus start
-    double tMin, tMax;                      // accepted window of the segment parameter
+    const Segment* segments;
 };
 
 void rejectHitsAtEnds(const RTCFilterFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const SegmentContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
+        const Segment& s = ctx->segments[RTCRayN_id(args->ray, args->N, i)];
         const glm::dvec4& plane = (*ctx->planes)[RTCHitN_primID(args->hit, args->N, i)];
         const glm::dvec3 n(plane);
-        const double denom = glm::dot(n, ctx->d);
+        const double denom = glm::dot(n, s.d);
         // A segment in the triangle's plane (denom 0) is not blocked by it: such a segment
         // joins two points of one surface and carries no energy anyway.
-        const double t = (plane.w - glm::dot(n, ctx->a)) / denom;
-        if (!(t > ctx->tMin && t < ctx->tMax)) args->valid[i] = 0;
+        const double t = (plane.w - glm::dot(n, s.a)) / denom;
+        if (!(t > s.tMin && t < s.tMax)) args->valid[i] = 0;
     }
 }
 
@@ -113,42 +120,69 @@ struct RayCaster::Impl {
     const LayerData& layer(Layer l) const { return layers[l == Layer::Static ? 0 : 1]; }
     LayerData& layer(Layer l) { return layers[l == Layer::Static ? 0 : 1]; }
 
-    // True when a hit lies strictly inside the segment a -> b, away from both ends.
-    bool blocked(const LayerData& l, const glm::dvec3& a, const glm::dvec3& b) const {
-        if (!l.scene) return false;
+    // The segment a -> b with its end margins; false when its ends are closer than the noise
+    // (then nothing lies between them).
+    bool segment(const LayerData& l, const glm::dvec3& a, const glm::dvec3& b, Segment& s) const {
         const glm::dvec3 d = b - a;
         const double len = glm::length(d);
         const double magnitude = std::max({l.magnitude, maxAbs(a), maxAbs(b)});
         const double margin = std::max(endMarginOfLength * len, endMarginOfMagnitude * magnitude);
-        if (!(len > 2.0 * margin)) return false;  // ends closer than the noise: nothing between
+        if (!(len > 2.0 * margin)) return false;
         const double tMargin = margin / len;
+        s = Segment{a, d, tMargin, 1.0 - tMargin};
+        return true;
+    }
 
+    // Unnormalised direction: t in [0, 1] spans the segment. The float window is the whole
+    // segment; the filter applies the end margins in double.
+    void setRay(RTCRay16& ray, unsigned lane, const Segment& s) const {
+        const glm::vec3 org = toEmbree(s.a);
+        const glm::vec3 dir(s.d * scale);
+        ray.org_x[lane] = org.x;
+        ray.org_y[lane] = org.y;
+        ray.org_z[lane] = org.z;
+        ray.dir_x[lane] = dir.x;
+        ray.dir_y[lane] = dir.y;
+        ray.dir_z[lane] = dir.z;
+        ray.tnear[lane] = 0.0f;
+        ray.tfar[lane] = 1.0f;
+        ray.mask[lane] = std::numeric_limits<unsigned>::max();
+        ray.time[lane] = 0.0f;
+        ray.id[lane] = lane;  // the filter's index into the segments
+        ray.flags[lane] = 0;
+    }
+
+    // How many of the segments from[i] -> to[i] (at most 16) are blocked, traced as one packet:
+    // the segments of a link run between two small patches, so they travel the same BVH nodes.
+    std::size_t blockedCount(const LayerData& l, std::span<const glm::dvec3> from,
+                             std::span<const glm::dvec3> to) const {
+        std::array<Segment, 16> segments;
+        alignas(64) std::array<int, 16> valid{};
+        RTCRay16 rays{};
+        bool any = false;
+        for (unsigned i = 0; i < from.size(); ++i) {
+            if (!segment(l, from[i], to[i], segments[i])) continue;
+            setRay(rays, i, segments[i]);
+            valid[i] = -1;
+            any = true;
+        }
+        if (!any) return 0;
         SegmentContext context;
         rtcInitIntersectContext(&context.base);
+        context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         context.planes = &l.planes;
-        context.a = a;
-        context.d = d;
-        context.tMin = tMargin;
-        context.tMax = 1.0 - tMargin;
-        RTCRay ray{};
-        const glm::vec3 org = toEmbree(a);
-        const glm::vec3 dir(d * scale);
-        ray.org_x = org.x;
-        ray.org_y = org.y;
-        ray.org_z = org.z;
-        // Unnormalised direction: t in [0, 1] spans the segment. The float window is the whole
-        // segment; the filter applies the end margins in double.
-        ray.dir_x = dir.x;
-        ray.dir_y = dir.y;
-        ray.dir_z = dir.z;
-        ray.tnear = 0.0f;
-        ray.tfar = 1.0f;
-        ray.mask = std::numeric_limits<unsigned>::max();
-        ray.time = 0.0f;
-        ray.flags = 0;
-        rtcOccluded1(l.scene.get(), &context.base, &ray);
+        context.segments = segments.data();
+        rtcOccluded16(valid.data(), l.scene.get(), &context.base, &rays);
+        std::size_t blocked = 0;
         // Embree marks an occluded ray by setting tfar to -inf.
-        return ray.tfar < 0.0f;
+        for (unsigned i = 0; i < from.size(); ++i) blocked += valid[i] == -1 && rays.tfar[i] < 0.0f;
+        return blocked;
+    }
+
+    // True when a hit lies strictly inside the segment a -> b, away from both ends.
+    bool blocked(const LayerData& l, const glm::dvec3& a, const glm::dvec3& b) const {
+        if (!l.scene) return false;
+        return blockedCount(l, std::span(&a, 1), std::span(&b, 1)) > 0;
     }
 };
 
@@ -236,10 +270,12 @@ double RayCaster::unoccludedFraction(Layer layer, std::span<const glm::dvec3> fr
     if (n == 0) return 1.0;
     const Impl::LayerData& l = impl_->layer(layer);
     if (!l.scene) return 1.0;
-    std::size_t open = 0;
-    for (std::size_t i = 0; i < n; ++i)
-        if (!impl_->blocked(l, from[i], to[i])) ++open;
-    return static_cast<double>(open) / static_cast<double>(n);
+    std::size_t blocked = 0;
+    for (std::size_t i = 0; i < n; i += 16) {
+        const std::size_t m = std::min<std::size_t>(16, n - i);
+        blocked += impl_->blockedCount(l, from.subspan(i, m), to.subspan(i, m));
+    }
+    return static_cast<double>(n - blocked) / static_cast<double>(n);
 }
 
 bool RayCaster::occluded(Layer layer, const glm::dvec3& a, const glm::dvec3& b) const {

@@ -16,7 +16,29 @@ Owner faceOwner(const Aabb& a, const Aabb& b, int axis, int side) {
     return ea > eb ? Owner::A : (eb > ea ? Owner::B : Owner::Both);
 }
 
+// A small outward tolerance (relative to the coordinates' magnitude) keeps the tests
+// conservative for boxes and points that were computed with rounding, e.g. a point interpolated
+// between two corners of the hull box.
+double tolerance(const Aabb& hull) {
+    const double scale =
+        std::max({std::abs(hull.lo.x), std::abs(hull.lo.y), std::abs(hull.lo.z),
+                  std::abs(hull.hi.x), std::abs(hull.hi.y), std::abs(hull.hi.z)});
+    return 1e-12 * scale;
+}
+
+bool overlaps(const Aabb& hull, const Aabb& box, double tol) {
+    for (int k = 0; k < 3; ++k)
+        if (!(box.lo[k] <= hull.hi[k] + tol && box.hi[k] >= hull.lo[k] - tol)) return false;
+    return true;
+}
+
 }  // namespace
+
+bool Shaft::hullMeets(const Aabb& a, const Aabb& b, const Aabb& box) {
+    Aabb hull = a;
+    hull.extend(b);
+    return overlaps(hull, box, tolerance(hull));
+}
 
 Shaft::Shaft(const Aabb& a, const Aabb& b) {
     hull_ = a;
@@ -28,13 +50,16 @@ Shaft::Shaft(const Aabb& a, const Aabb& b) {
     // two boxes. Both edges are parallel to the third axis k, so the plane is too. Counting the
     // owner changes over the 12 hull edges gives at most 8 such planes (each axis' two faces
     // split between the boxes; the sum over axis pairs peaks at 8).
+    Owner owner[3][2];
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) owner[axis][side] = faceOwner(a, b, axis, side);
     for (int k = 0; k < 3; ++k) {
         const int i = k == 0 ? 1 : 0;
         const int j = k == 2 ? 1 : 2;
         for (int si = 0; si < 2; ++si) {
             for (int sj = 0; sj < 2; ++sj) {
-                const Owner oi = faceOwner(a, b, i, si);
-                const Owner oj = faceOwner(a, b, j, sj);
+                const Owner oi = owner[i][si];
+                const Owner oj = owner[j][sj];
                 if (oi == Owner::Both || oj == Owner::Both || oi == oj) continue;
                 // X reaches further along i, Y along j; the plane passes through X's edge
                 // (X_i, X_j) and Y's edge (Y_i, Y_j) at this corner of the (i, j) projection.
@@ -63,15 +88,8 @@ Shaft::Shaft(const Aabb& a, const Aabb& b) {
 }
 
 bool Shaft::intersects(const Aabb& box) const {
-    // A small outward tolerance (relative to the coordinates' magnitude) keeps the test
-    // conservative for boxes and points that were computed with rounding, e.g. a point
-    // interpolated between two corners of the hull box.
-    const double scale =
-        std::max({std::abs(hull_.lo.x), std::abs(hull_.lo.y), std::abs(hull_.lo.z),
-                  std::abs(hull_.hi.x), std::abs(hull_.hi.y), std::abs(hull_.hi.z)});
-    const double tol = 1e-12 * scale;
-    for (int k = 0; k < 3; ++k)
-        if (!(box.lo[k] <= hull_.hi[k] + tol && box.hi[k] >= hull_.lo[k] - tol)) return false;
+    const double tol = tolerance(hull_);
+    if (!overlaps(hull_, box, tol)) return false;
     for (std::uint8_t p = 0; p < count_; ++p) {
         const int k = axis_[p];
         const int i = k == 0 ? 1 : 0;

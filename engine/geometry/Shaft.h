@@ -19,6 +19,9 @@ class Shaft {
     // Conservative: returns false only when `box` certainly does not meet the convex hull of
     // a ∪ b. Touching counts as meeting.
     bool intersects(const Aabb& box) const;
+    // The first test of intersects, without building the shaft: whether `box` meets the box
+    // around a ∪ b. False means Shaft(a, b).intersects(box) is false too.
+    static bool hullMeets(const Aabb& a, const Aabb& b, const Aabb& box);
 
     static constexpr std::size_t maxPlanes = 8;
 

@@ -71,10 +71,17 @@ glm::dvec3 polygonNormal(const PatchGeometry& polygon) {
     return len > 0.0 && std::isfinite(len) ? n / len : glm::dvec3(0.0);
 }
 
-double pointToPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& nx,
-                                const PatchGeometry& polygon) {
-    if (polygon.n < 3 || polygon.n > 4) return 0.0;
-    const glm::dvec3 np = polygonNormal(polygon);
+namespace {
+
+// A 3- or 4-gon's unit normal, or zero when it is not one (or degenerate).
+glm::dvec3 emitterNormal(const PatchGeometry& polygon) {
+    return polygon.n < 3 || polygon.n > 4 ? glm::dvec3(0.0) : polygonNormal(polygon);
+}
+
+// pointToPolygonFormFactor, with the polygon's emitterNormal np computed once
+// for all the points of a quadrature.
+double pointToPolygon(const glm::dvec3& x, const glm::dvec3& nx, const PatchGeometry& polygon,
+                      const glm::dvec3& np) {
     if (np == glm::dvec3(0.0)) return 0.0;
 
     // One-sided emitter: x must be strictly in front of the polygon's plane. The tolerance is
@@ -106,20 +113,30 @@ double pointToPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& nx,
     // (x, v_i, v_i+1). With counter-clockwise-front winding seen from x, gamma_i is taken as
     // unit(r_{i+1} x r_i). beta_i = atan2(|c|, r_i . r_{i+1}) stays accurate for tiny and
     // near-straight angles, unlike acos of a normalised dot product.
+    std::array<double, 8> length{};
+    for (int i = 0; i < count; ++i) length[i] = glm::length(r[i]);
     double sum = 0.0;
     for (int i = 0; i < count; ++i) {
+        const int j = (i + 1) % count;
         const glm::dvec3& ri = r[i];
-        const glm::dvec3& rj = r[(i + 1) % count];
+        const glm::dvec3& rj = r[j];
         const glm::dvec3 c = glm::cross(rj, ri);
         const double cl = glm::length(c);
         // Coincident vertices or an edge through x (only possible within the plane tolerance):
         // the edge subtends no solid angle we can orient; skip it instead of dividing by zero.
-        if (!(cl > 1e-15 * glm::length(ri) * glm::length(rj))) continue;
+        if (!(cl > 1e-15 * length[i] * length[j])) continue;
         const double beta = std::atan2(cl, glm::dot(ri, rj));
         sum += beta * glm::dot(nx, c) / cl;
     }
     const double f = sum / (2.0 * std::numbers::pi);
     return std::isfinite(f) ? std::clamp(f, 0.0, 1.0) : 0.0;
+}
+
+}  // namespace
+
+double pointToPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& nx,
+                                const PatchGeometry& polygon) {
+    return pointToPolygon(x, nx, polygon, emitterNormal(polygon));
 }
 
 std::vector<SamplePoint> patchSamples(const PatchGeometry& patch, int order) {
@@ -180,8 +197,9 @@ FormFactorEstimate estimateFormFactor(const PatchGeometry& receiver, const Patch
     const glm::dvec3 nr = polygonNormal(receiver);
     if (nr == glm::dvec3(0.0)) return e;
     e.min = INFINITY;
+    const glm::dvec3 ns = emitterNormal(source);
     for (const SamplePoint& s : patchSamples(receiver, order)) {
-        const double f = pointToPolygonFormFactor(s.p, nr, source);
+        const double f = pointToPolygon(s.p, nr, source, ns);
         e.mean += s.w * f;
         e.min = std::min(e.min, f);
         e.max = std::max(e.max, f);

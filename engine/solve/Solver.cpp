@@ -54,11 +54,12 @@ std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dir
     for (ElementId e : dirty)
         for (ElementId a = e; a != kNone && !h_[a].changed; a = h_[a].parent) h_[a].changed = true;
     std::vector<ElementId> visited;
-    partialPushPull(h_.root(), glm::dvec3(0.0), false, visited);
+    partialPushPull(h_.root(), glm::dvec3(0.0), false, 0, visited);
     return visited;
 }
 
-glm::dvec3 Solver::partialPushPull(ElementId id, const glm::dvec3& down, bool forced, std::vector<ElementId>& visited) {
+glm::dvec3 Solver::partialPushPull(ElementId id, const glm::dvec3& down, bool forced, int depth,
+                                   std::vector<ElementId>& visited) {
     HElement& e = h_[id];
     if (!forced && !e.changed) return e.radiosity;
     visited.push_back(id);
@@ -68,10 +69,35 @@ glm::dvec3 Solver::partialPushPull(ElementId id, const glm::dvec3& down, bool fo
         if (e.isSurface()) b = e.emission + e.reflectance * arriving;
     } else {
         const bool below = forced || e.dirty;
+        const std::vector<ElementId>& children = e.children;
+        // The clusters near the root split the work between the cores: their
+        // subtrees are disjoint. Each child's visits and mean are gathered
+        // apart and then taken in order, as the serial descent would.
         double area = 0.0;
-        for (ElementId c : e.children) {
-            b += h_[c].area * partialPushPull(c, arriving, below, visited);
-            area += h_[c].area;
+        if (!e.isSurface() && depth < kParallelDepth && children.size() > 1) {
+            std::vector<glm::dvec3> childB(children.size());
+            std::vector<std::vector<ElementId>> childVisited(children.size());
+            tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) {
+                childB[i] = partialPushPull(children[i], arriving, below, depth + 1, childVisited[i]);
+            });
+            for (std::size_t i = 0; i < children.size(); ++i) {
+                b += h_[children[i]].area * childB[i];
+                area += h_[children[i]].area;
+                visited.insert(visited.end(), childVisited[i].begin(), childVisited[i].end());
+            }
+        } else {
+            // The walk is bound by memory: ask for the children's fields before the first is read.
+            for (ElementId c : children) {
+                const HElement& k = h_[c];
+                __builtin_prefetch(&k.children);
+                __builtin_prefetch(&k.area);
+                __builtin_prefetch(&k.irradiance);
+                __builtin_prefetch(&k.changed);
+            }
+            for (ElementId c : children) {
+                b += h_[c].area * partialPushPull(c, arriving, below, depth + 1, visited);
+                area += h_[c].area;
+            }
         }
         if (area > 0.0) b /= area;
     }

@@ -54,7 +54,10 @@ public:
 
 private:
     glm::dvec3 pushPull(ElementId e, const glm::dvec3& down, double& change, double& total);
-    glm::dvec3 partialPushPull(ElementId e, const glm::dvec3& down, bool forced, std::vector<ElementId>& visited);
+    // Cluster levels (from the root) whose children are pushed and pulled in parallel.
+    static constexpr int kParallelDepth = 8;
+    glm::dvec3 partialPushPull(ElementId e, const glm::dvec3& down, bool forced, int depth,
+                               std::vector<ElementId>& visited);
     Hierarchy& h_;
     LinkStore& links_;
 };

@@ -6,6 +6,8 @@
 #include <queue>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "geometry/Shaft.h"
 #include "refine/Refiner.h"
@@ -44,8 +46,7 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
 
     // 1. Line-space traversal: candidates, reinstated p-links, cleanup; under
     //    a budget, the controlled descent of Fig. 8.
-    visits_.clear();
-    findModifiedLinks(h_.root(), h_[h_.root()].range);
+    findModifiedLinks();
     const std::size_t used = controlledUpdate(0, budget);
     stats.traversalSeconds = since(start);
     stats.shaftTests = shaftTests_;
@@ -63,8 +64,12 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
     t = std::chrono::steady_clock::now();
     std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
     stats.changedElements = visited.size();
-    recordOverlay(visited);
+    // The overlay on the other core: it reads positions and link ends, the
+    // bounces write radiosity and irradiance.
+    tbb::task_group overlay;
+    overlay.run([this, changed = visited] { recordOverlay(changed); });
     bounce(std::move(visited), settings, stats);
+    overlay.wait();
     stats.pushPullSeconds = since(t);
 
     obstacles_.clear();
@@ -158,10 +163,20 @@ bool LineSpaceUpdate::affectedByMotion(ElementId s, ElementId r) {
     }
     if (touches(moved_, h_[s].range) || touches(moved_, h_[r].range)) return true;
     ++shaftTests_;
-    // The shaft is built only when tested: storing one per link would cost
-    // 256 bytes each.
-    const Shaft shaft(h_[s].box, h_[r].box);
+    // The shaft is built only when tested (storing one per link would cost
+    // 256 bytes each), and only when the boxes' hull meets the object: most
+    // tested links are far from it.
+    const Aabb& a = h_[s].box;
+    const Aabb& b = h_[r].box;
+    if (!Shaft::hullMeets(a, b, oldBox_) && !Shaft::hullMeets(a, b, newBox_)) return false;
+    const Shaft shaft(a, b);
     return shaft.intersects(oldBox_) || shaft.intersects(newBox_);
+}
+
+bool LineSpaceUpdate::cutBefore(ElementId s, ElementId r) const {
+    const Aabb& a = h_[s].box;
+    const Aabb& b = h_[r].box;
+    return Shaft::hullMeets(a, b, oldBox_) && Shaft(a, b).intersects(oldBox_);
 }
 
 void LineSpaceUpdate::recompute(LinkId id) {
@@ -179,17 +194,62 @@ void LineSpaceUpdate::recompute(LinkId id) {
     }
 }
 
-std::size_t LineSpaceUpdate::findModifiedLinks(ElementId he, const IndexRange& ind) {
-    const std::size_t index = visits_.size();
-    visits_.push_back(Visit{});
-    // The affected p-links of he, recomputed together (in parallel) before
-    // any is judged: the shaft tests are cheap, the new transfers are not.
+void LineSpaceUpdate::findModifiedLinks() {
+    // Level by level, so that the affected p-links of a whole level are
+    // recomputed in one parallel batch: a single node has too few to keep
+    // both cores busy. The levels' subtrees are disjoint, and the visits of
+    // one node (one per group of its parent) have disjoint source ranges, so
+    // nothing one visit does reaches the links another visit looks at.
+    // Each level's candidates are recomputed in the background, on the core
+    // the serial traversal leaves idle: the traversal only removes links below
+    // the visits still to come, never a candidate, and reads none of the
+    // fields a recompute writes.
+    visits_.assign(1, Visit{});
+    std::vector<Step> level{Step{h_.root(), h_[h_.root()].range, 0}}, next;
     std::vector<LinkId> affected;
-    for (LinkId pl : h_[he].plinks) {
-        const ElementId q = links_[pl].source;  // the "source" node
-        if (ind.contains(h_[q].range) && affectedByMotion(q, he)) affected.push_back(pl);
+    std::vector<std::size_t> firstAffected;  // per step: where its affected p-links start
+    tbb::task_group background;
+    while (!level.empty()) {
+        affected.clear();
+        firstAffected.clear();
+        for (const Step& step : level) {
+            firstAffected.push_back(affected.size());
+            for (LinkId pl : h_[step.he].plinks) {
+                const ElementId q = links_[pl].source;  // the "source" node
+                if (step.ind.contains(h_[q].range) && affectedByMotion(q, step.he)) affected.push_back(pl);
+            }
+        }
+        firstAffected.push_back(affected.size());
+        // The shaft tests are cheap, the new transfers are not. Isolated: a
+        // background recompute must not hold up the level's decisions.
+        tbb::this_task_arena::isolate([&] {
+            tbb::parallel_for(std::size_t(0), affected.size(), [&](std::size_t i) { recompute(affected[i]); });
+        });
+        next.clear();
+        const std::size_t firstCandidate = candidates_.size();
+        for (std::size_t i = 0; i < level.size(); ++i) {
+            const std::span<const LinkId> own(affected.data() + firstAffected[i], affected.data() + firstAffected[i + 1]);
+            visitNode(level[i], own, next);
+        }
+        background.run([this, batch = std::vector<LinkId>(candidates_.begin() + firstCandidate, candidates_.end())] {
+            tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) { recompute(batch[i]); });
+        });
+        level.swap(next);
     }
-    tbb::parallel_for(std::size_t(0), affected.size(), [&](std::size_t i) { recompute(affected[i]); });
+    background.wait();
+    // Pull the work up (sec. 6.1): a visit's children come after it.
+    for (std::size_t i = visits_.size(); i-- > 0;) {
+        Visit& v = visits_[i];
+        v.work = v.own;
+        for (Group& g : v.groups) {
+            for (std::size_t child : g.visits) g.work += visits_[child].work;
+            v.work += g.work;
+        }
+    }
+}
+
+void LineSpaceUpdate::visitNode(const Step& step, std::span<const LinkId> affected, std::vector<Step>& next) {
+    const ElementId he = step.he;
     std::vector<LinkId> refining;  // p-links whose line-space children are visited
     for (LinkId pl : affected) {
         const Link& l = links_[pl];
@@ -203,7 +263,7 @@ std::size_t LineSpaceUpdate::findModifiedLinks(ElementId he, const IndexRange& i
     // A reinstate later in the loop may have removed an earlier p-link (one of
     // its line-space children).
     std::erase_if(refining, [&](LinkId pl) { return !links_[pl].live || !links_[pl].passive; });
-    const std::size_t own = affected.size() + checkAddLinks(he, ind);
+    visits_[step.visit].own = affected.size() + checkAddLinks(he, step.ind);
 
     // Descend once per maximal range: a p-link refined by splitting its source
     // leaves p-links from q's children on he itself, whose ranges lie inside
@@ -228,22 +288,15 @@ std::size_t LineSpaceUpdate::findModifiedLinks(ElementId he, const IndexRange& i
         // surface pairs, whose form factors are accurate, become coarser.
         g.mustDescend = g.mustDescend || !h_[links_[pl].source].isSurface() || !h_[he].isSurface();
     }
-    std::size_t work = own;
-    for (Group& g : groups) {
-        for (ElementId c : std::vector<ElementId>(h_[he].children)) {
+    for (Group& g : groups)
+        for (ElementId c : h_[he].children) {
             // No link from the range on c means no line-space child of it below c.
-            if (linksFrom(c, g.range) == 0) continue;
-            const std::size_t child = findModifiedLinks(c, g.range);
-            g.visits.push_back(child);
-            g.work += visits_[child].work;
+            if (!hasLinkFrom(c, g.range)) continue;
+            g.visits.push_back(visits_.size());
+            next.push_back(Step{c, g.range, visits_.size()});
+            visits_.emplace_back();
         }
-        work += g.work;
-    }
-    Visit& v = visits_[index];
-    v.own = own;
-    v.work = work;
-    v.groups = std::move(groups);
-    return index;
+    visits_[step.visit].groups = std::move(groups);
 }
 
 std::size_t LineSpaceUpdate::controlledUpdate(std::size_t index, std::size_t budget) {
@@ -290,11 +343,10 @@ std::size_t LineSpaceUpdate::controlledUpdate(std::size_t index, std::size_t bud
     return used;
 }
 
-std::size_t LineSpaceUpdate::linksFrom(ElementId e, const IndexRange& sources) const {
-    std::size_t n = 0;
-    for (LinkId id : h_[e].links) n += sources.contains(h_[links_[id].source].range.first);
-    for (LinkId id : h_[e].plinks) n += sources.contains(h_[links_[id].source].range.first);
-    return n;
+bool LineSpaceUpdate::hasLinkFrom(ElementId e, const IndexRange& sources) const {
+    const auto from = [&](LinkId id) { return sources.contains(h_[links_[id].source].range.first); };
+    return std::any_of(h_[e].links.begin(), h_[e].links.end(), from) ||
+           std::any_of(h_[e].plinks.begin(), h_[e].plinks.end(), from);
 }
 
 std::size_t LineSpaceUpdate::checkAddLinks(ElementId he, const IndexRange& ind) {
@@ -328,10 +380,23 @@ void LineSpaceUpdate::reinstate(LinkId id) {
 }
 
 void LineSpaceUpdate::removeLineSpaceChildren(ElementId e, const IndexRange& sources, LinkId keep) {
-    for (LinkId id : std::vector<LinkId>(h_[e].links))
-        if (sources.contains(h_[links_[id].source].range.first)) refiner_.remove(id);
-    for (LinkId id : std::vector<LinkId>(h_[e].plinks))
-        if (id != keep && sources.contains(h_[links_[id].source].range.first)) refiner_.remove(id);
+    // Collected before any goes: a removal reorders the lists. (Removing an
+    // active link leaves the p-links' order as it was.)
+    doomed_.clear();
+    bool refined = e == links_[keep].receiver;
+    for (LinkId id : h_[e].links)
+        if (sources.contains(h_[links_[id].source].range.first)) doomed_.push_back(id);
+    for (LinkId id : h_[e].plinks)
+        if (id != keep && sources.contains(h_[links_[id].source].range.first)) {
+            doomed_.push_back(id);
+            refined = true;
+        }
+    for (LinkId id : doomed_) refiner_.remove(id);
+    // A line-space child of `keep` below e descends, through p-links of the
+    // same sources, from one on its receiver's parent (a split receiver) or
+    // on its receiver (a split source), and so from one on e: without one
+    // here (e itself holds `keep`), there is none below.
+    if (!refined) return;
     for (ElementId c : h_[e].children) removeLineSpaceChildren(c, sources, keep);
 }
 
@@ -345,10 +410,9 @@ bool LineSpaceUpdate::subtreeUnlinked(ElementId e) const {
 
 void LineSpaceUpdate::updateCandidates(FrameStats& stats, std::size_t budget) {
     RefineHeap heap;
-    // Drop candidates a reinstate removed; recompute the rest on all cores
-    // (each writes only its own link; the geometry and the rays are read-only).
+    // Drop candidates a reinstate under the budget removed; the traversal
+    // recomputed them all.
     std::erase_if(candidates_, [&](LinkId id) { return !links_[id].live || links_[id].passive; });
-    tbb::parallel_for(std::size_t(0), candidates_.size(), [&](std::size_t i) { recompute(candidates_[i]); });
     for (LinkId id : candidates_) {
         ++stats.candidates;
         if (refiner_.wouldRefine(links_[id])) {
@@ -356,10 +420,9 @@ void LineSpaceUpdate::updateCandidates(FrameStats& stats, std::size_t budget) {
             // Sec. 6.2: the object entering a shaft it did not cut before makes
             // refinement there more urgent.
             const Link& l = links_[id];
-            if (!touches(moved_, h_[l.source].range) && !touches(moved_, h_[l.receiver].range)) {
-                const Shaft shaft(h_[l.source].box, h_[l.receiver].box);
-                if (!shaft.intersects(oldBox_)) key *= kEnteringBoost;
-            }
+            if (!touches(moved_, h_[l.source].range) && !touches(moved_, h_[l.receiver].range) &&
+                !cutBefore(l.source, l.receiver))
+                key *= kEnteringBoost;
             heap.push({key, id});
         } else {
             refiner_.regather(id);  // eq. 1
@@ -418,26 +481,57 @@ double LineSpaceUpdate::heapKey(const Link& l) const {
 
 void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats) {
     const double threshold = settings.bounceThreshold * referenceRadiosity_;
+    std::vector<Transfer> transfers;
     for (int b = 0; b < settings.maxBounces; ++b) {
-        bool any = false;
-        for (ElementId e : visited) {
-            HElement& el = h_[e];
-            const glm::dvec3 delta = el.radiosity - el.gathered;
-            if (el.outLinks.empty() || std::abs(luminance(delta)) <= threshold) continue;
-            // In-place gather of the difference on every link leaving e.
-            for (LinkId id : el.outLinks) {
-                const Link& l = links_[id];
-                h_[l.receiver].irradiance += l.gathered * delta;
-                refiner_.markDirty(l.receiver);
+        if (!collectTransfers(visited, threshold, transfers)) return;
+        // In the serial order, so that every irradiance gets the same sum.
+        // Bound by memory: the receivers a few transfers ahead are asked for early.
+        constexpr std::size_t kAhead = 8;
+        for (std::size_t k = 0; k < transfers.size(); ++k) {
+            if (k + kAhead < transfers.size()) {
+                const HElement& ahead = h_[transfers[k + kAhead].receiver];
+                __builtin_prefetch(&ahead.irradiance);
+                __builtin_prefetch(&ahead.dirty);
             }
-            el.gathered = el.radiosity;
-            any = true;
+            h_[transfers[k].receiver].irradiance += transfers[k].irradiance;
+            refiner_.markDirty(transfers[k].receiver);
         }
-        if (!any) return;
         ++stats.bounces;
         visited = solver_.partialPushPull(refiner_.takeDirty());
         stats.changedElements += visited.size();
     }
+}
+
+bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, double threshold,
+                                       std::vector<Transfer>& transfers) {
+    // The senders and their transfers are found on all cores: reading the
+    // elements and links is most of a bounce.
+    std::vector<char> sends(visited.size());
+    tbb::parallel_for(std::size_t(0), visited.size(), [&](std::size_t i) {
+        const HElement& el = h_[visited[i]];
+        sends[i] = !el.outLinks.empty() && std::abs(luminance(el.radiosity - el.gathered)) > threshold;
+    });
+    std::vector<ElementId> sources;
+    std::vector<std::size_t> first;  // per source: where its transfers start
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < visited.size(); ++i) {
+        if (!sends[i]) continue;
+        sources.push_back(visited[i]);
+        first.push_back(count);
+        count += h_[visited[i]].outLinks.size();
+    }
+    transfers.resize(count);
+    tbb::parallel_for(std::size_t(0), sources.size(), [&](std::size_t k) {
+        HElement& el = h_[sources[k]];
+        // In-place gather of the difference on every link leaving the source.
+        const glm::dvec3 delta = el.radiosity - el.gathered;
+        for (std::size_t j = 0; j < el.outLinks.size(); ++j) {
+            const Link& l = links_[el.outLinks[j]];
+            transfers[first[k] + j] = Transfer{l.receiver, l.gathered * delta};
+        }
+        el.gathered = el.radiosity;
+    });
+    return !sources.empty();
 }
 
 }  // namespace rad

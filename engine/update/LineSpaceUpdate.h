@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <queue>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -107,14 +108,26 @@ private:
         std::size_t work = 0;  // own plus everything below
         std::vector<Group> groups;
     };
-    // Fig. 6: the first traversal; pulls up the work each p-link's line-space
-    // children call for (sec. 6.1). Returns the index of its visit record.
-    std::size_t findModifiedLinks(ElementId he, const IndexRange& ind);
+    // A node of the first traversal, the source range it looks at, and its
+    // visit record.
+    struct Step {
+        ElementId he;
+        IndexRange ind;
+        std::size_t visit;
+    };
+    // Fig. 6: the first traversal, from the root (visit record 0); pulls up
+    // the work each p-link's line-space children call for (sec. 6.1).
+    void findModifiedLinks();
+    // One node of it, its affected p-links already recomputed: reinstates or
+    // groups them, and appends the child visits to `next`.
+    void visitNode(const Step& step, std::span<const LinkId> affected, std::vector<Step>& next);
     // Fig. 8: the second traversal, within a budget; returns the link updates spent.
     std::size_t controlledUpdate(std::size_t visit, std::size_t budget);
     std::size_t checkAddLinks(ElementId he, const IndexRange& ind);
-    std::size_t linksFrom(ElementId e, const IndexRange& sources) const;
+    bool hasLinkFrom(ElementId e, const IndexRange& sources) const;
     bool affectedByMotion(ElementId s, ElementId r);
+    // Whether the object's old box cut the shaft of s -> r.
+    bool cutBefore(ElementId s, ElementId r) const;
     // Recomputes a link's form factor and visibility for the new position.
     void recompute(LinkId id);
     void reinstate(LinkId id);
@@ -130,6 +143,15 @@ private:
     static constexpr double kEnteringBoost = 4.0;
     double heapKey(const Link& l) const;
     void bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats);
+    // A source's change of radiosity sent along one of its links.
+    struct Transfer {
+        ElementId receiver;
+        glm::dvec3 irradiance;
+    };
+    // The transfers of the visited elements whose radiosity moved by more
+    // than the threshold since they were last gathered, in the order of
+    // `visited` and of their links; marks them gathered. False if none moved.
+    bool collectTransfers(const std::vector<ElementId>& visited, double threshold, std::vector<Transfer>& transfers);
 
     Hierarchy& h_;
     LinkStore& links_;
@@ -150,6 +172,7 @@ private:
     std::size_t budgetReinstated_ = 0;
     std::vector<LinkId> pending_;
     std::vector<Visit> visits_;
+    std::vector<LinkId> doomed_;  // removeLineSpaceChildren's, kept to spare an allocation per node
     std::vector<LinkId> modified_;  // this frame's modified links, for the overlay
     std::vector<std::array<glm::dvec3, 2>> modifiedSegments_, changedSegments_;
     void recordOverlay(const std::vector<ElementId>& changed);  // want refining; left coarse by the budget
