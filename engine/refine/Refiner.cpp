@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include <tbb/parallel_for.h>
 
@@ -74,12 +75,16 @@ bool Refiner::touchesMovable(ElementId e) const {
     return false;
 }
 
-std::vector<glm::dvec3> Refiner::samplePoints(ElementId id) const {
+Refiner::Points Refiner::samplePoints(ElementId id) const {
     const HElement& e = h_[id];
-    if (!e.isSurface()) return {clusterSamples_[id].begin(), clusterSamples_[id].end()};
-    std::vector<glm::dvec3> points;
-    const int order = std::max(1, static_cast<int>(std::lround(std::sqrt(settings_.samplesPerSide))));
-    for (const SamplePoint& s : patchSamples(e.patch, order)) points.push_back(lift(s.p, e.normal, std::sqrt(e.area)));
+    Points points;
+    if (!e.isSurface()) {
+        for (const glm::dvec3& p : clusterSamples_[id]) points.p[points.n++] = p;
+        return points;
+    }
+    const int order = std::clamp(static_cast<int>(std::lround(std::sqrt(settings_.samplesPerSide))), 1, 4);
+    for (const SamplePoint& s : patchSamples(e.patch, order))
+        if (points.n < kMaxPoints) points.p[points.n++] = lift(s.p, e.normal, std::sqrt(e.area));
     return points;
 }
 
@@ -132,27 +137,32 @@ Link Refiner::compute(ElementId s, ElementId r) const {
     if (l.unoccluded <= 0.0 && !dynamic && !mustRefine) return l;  // not live: never carries light
     l.live = true;
     if (l.unoccluded > 0.0) {
-        std::vector<glm::dvec3> from, to;
-        segments(s, r, from, to);
-        l.visStatic = static_cast<float>(rays_.unoccludedFraction(Layer::Static, from, to));
-        l.visDynamic = static_cast<float>(rays_.unoccludedFraction(Layer::Dynamic, from, to));
+        Segments seg;
+        segments(s, r, seg);
+        l.visStatic = static_cast<float>(unoccluded(Layer::Static, seg));
+        l.visDynamic = static_cast<float>(unoccluded(Layer::Dynamic, seg));
     }
     return l;
 }
 
-void Refiner::segments(ElementId s, ElementId r, std::vector<glm::dvec3>& from, std::vector<glm::dvec3>& to) const {
-    const std::vector<glm::dvec3> ps = samplePoints(s), pr = samplePoints(r);
-    for (const glm::dvec3& a : ps)
-        for (const glm::dvec3& b : pr) {
-            from.push_back(a);
-            to.push_back(b);
+void Refiner::segments(ElementId s, ElementId r, Segments& out) const {
+    const Points ps = samplePoints(s), pr = samplePoints(r);
+    out.n = 0;
+    for (std::size_t i = 0; i < ps.n; ++i)
+        for (std::size_t j = 0; j < pr.n; ++j) {
+            out.from[out.n] = ps.p[i];
+            out.to[out.n++] = pr.p[j];
         }
 }
 
+double Refiner::unoccluded(Layer layer, const Segments& s) const {
+    return rays_.unoccludedFraction(layer, std::span(s.from.data(), s.n), std::span(s.to.data(), s.n));
+}
+
 float Refiner::dynamicVisibility(ElementId s, ElementId r) const {
-    std::vector<glm::dvec3> from, to;
-    segments(s, r, from, to);
-    return static_cast<float>(rays_.unoccludedFraction(Layer::Dynamic, from, to));
+    Segments seg;
+    segments(s, r, seg);
+    return static_cast<float>(unoccluded(Layer::Dynamic, seg));
 }
 
 LinkId Refiner::attach(const Link& link) {

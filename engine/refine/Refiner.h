@@ -15,6 +15,7 @@
 namespace rad {
 
 class RayCaster;
+enum class Layer;
 
 struct RefineSettings {
     // A link is refined while B_s * F * A_r exceeds epsilon times the total
@@ -87,8 +88,21 @@ private:
     Split chooseSplit(const Link& link) const;
     bool canSplit(ElementId e) const;
     FormFactorEstimate unoccludedFormFactor(ElementId s, ElementId r) const;
-    std::vector<glm::dvec3> samplePoints(ElementId e) const;
-    void segments(ElementId s, ElementId r, std::vector<glm::dvec3>& from, std::vector<glm::dvec3>& to) const;
+    // Visibility sample points of an element, in fixed storage: a link is
+    // computed for every refinement and every move, and heap allocations
+    // there cost more than the points.
+    static constexpr std::size_t kMaxPoints = 16;  // per element: order 4
+    struct Points {
+        std::array<glm::dvec3, kMaxPoints> p;
+        std::size_t n = 0;
+    };
+    struct Segments {
+        std::array<glm::dvec3, kMaxPoints * kMaxPoints> from, to;
+        std::size_t n = 0;
+    };
+    Points samplePoints(ElementId e) const;
+    void segments(ElementId s, ElementId r, Segments& out) const;
+    double unoccluded(Layer layer, const Segments& s) const;
     // Whether e lies in, or holds, an object cluster that can move (under the
     // root): its links are kept even when they carry nothing where it stands.
     bool touchesMovable(ElementId e) const;
