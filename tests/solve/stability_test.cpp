@@ -17,6 +17,7 @@
 #include "Engine.h"
 #include "refine/Refiner.h"  // luminance()
 #include "scene/GltfImport.h"
+#include "support/Motion.h"
 #include "support/TestScenes.h"
 
 namespace rad {
@@ -24,16 +25,9 @@ namespace {
 
 using V = glm::dvec3;
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-glm::dmat4 translation(V t) { return glm::translate(glm::dmat4(1.0), t); }
-
-bool allFinite(const RadiositySamples& s) {
-    for (double v : s.luminance)
-        if (!std::isfinite(v)) return false;
-    return !s.luminance.empty();
-}
+using test::allFinite;
+using test::secondsSince;
+using test::translation;
 
 bool finiteEnergy(const EnergyBalance& e) {
     return std::isfinite(e.emitted) && std::isfinite(e.absorbed) && std::isfinite(e.received) &&

@@ -20,6 +20,7 @@
 #include "Engine.h"
 #include "scene/GltfImport.h"
 #include "support/Coverage.h"
+#include "support/Motion.h"
 #include "support/TestScenes.h"
 
 namespace rad {
@@ -27,22 +28,10 @@ namespace {
 
 using V = glm::dvec3;
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-glm::dmat4 translation(V t) { return glm::translate(glm::dmat4(1.0), t); }
-
-std::uint32_t objectIndex(const Engine& engine, const std::string& name) {
-    const auto o = engine.scene().findObject(name);
-    if (!o) throw std::runtime_error("no object " + name);
-    return *o;
-}
-
-bool allFinite(const RadiositySamples& s) {
-    for (double v : s.luminance)
-        if (!std::isfinite(v)) return false;
-    return !s.luminance.empty();
-}
+using test::allFinite;
+using test::objectIndex;
+using test::secondsSince;
+using test::translation;
 
 UpdateSettings withBudget(std::size_t budget) {
     UpdateSettings u;

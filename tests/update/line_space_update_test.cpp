@@ -19,6 +19,7 @@
 
 #include "Engine.h"
 #include "scene/GltfImport.h"
+#include "support/Motion.h"
 #include "support/TestScenes.h"
 
 namespace rad {
@@ -26,27 +27,11 @@ namespace {
 
 using V = glm::dvec3;
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-glm::dmat4 translation(V t) { return glm::translate(glm::dmat4(1.0), t); }
-
-// A rotation by `degrees` about the axis through `centre`.
-glm::dmat4 rotationAbout(V centre, V axis, double degrees) {
-    return translation(centre) * glm::rotate(glm::dmat4(1.0), glm::radians(degrees), axis) * translation(-centre);
-}
-
-std::uint32_t objectIndex(const Engine& engine, const std::string& name) {
-    const auto o = engine.scene().findObject(name);
-    if (!o) throw std::runtime_error("no object " + name);
-    return *o;
-}
-
-bool allFinite(const RadiositySamples& s) {
-    for (double v : s.luminance)
-        if (!std::isfinite(v)) return false;
-    return !s.luminance.empty();
-}
+using test::allFinite;
+using test::objectIndex;
+using test::rotationAbout;
+using test::secondsSince;
+using test::translation;
 
 SolutionError compareWithFullSolve(const Engine& engine, const EngineSettings& settings, double* fullSeconds) {
     const auto start = Clock::now();

@@ -16,6 +16,7 @@
 #include "Engine.h"
 #include "scene/GltfImport.h"
 #include "support/Coverage.h"
+#include "support/Motion.h"
 #include "support/TestScenes.h"
 
 namespace rad {
@@ -23,20 +24,10 @@ namespace {
 
 using V = glm::dvec3;
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-glm::dmat4 translation(V t) { return glm::translate(glm::dmat4(1.0), t); }
-
-glm::dmat4 rotationAbout(V centre, V axis, double degrees) {
-    return translation(centre) * glm::rotate(glm::dmat4(1.0), glm::radians(degrees), axis) * translation(-centre);
-}
-
-std::uint32_t objectIndex(const Engine& engine, const std::string& name) {
-    const auto o = engine.scene().findObject(name);
-    if (!o) throw std::runtime_error("no object " + name);
-    return *o;
-}
+using test::objectIndex;
+using test::rotationAbout;
+using test::secondsSince;
+using test::translation;
 
 SolutionError compareWithFullSolve(const Engine& engine, const EngineSettings& settings) {
     Engine full(engine.scene(), settings);

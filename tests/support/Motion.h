@@ -1,0 +1,23 @@
+#pragma once
+// What the update tests share: rigid motions, object lookup, timing.
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "Engine.h"
+
+namespace rad::test {
+
+glm::dmat4 translation(const glm::dvec3& t);
+// A rotation by `degrees` about the axis through `centre`.
+glm::dmat4 rotationAbout(const glm::dvec3& centre, const glm::dvec3& axis, double degrees);
+// The index of the named object; throws std::runtime_error when there is none.
+std::uint32_t objectIndex(const Engine& engine, const std::string& name);
+double secondsSince(std::chrono::steady_clock::time_point start);
+// Every sample finite, and some samples.
+bool allFinite(const RadiositySamples& samples);
+
+}  // namespace rad::test
