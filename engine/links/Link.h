@@ -28,6 +28,10 @@ struct Link {
     double gathered = 0.0;
     bool passive = false;
     bool live = false;
+    // The visibility parts are out of date: a p-link that is refined whatever
+    // its visibility needs none to be judged, and gets it if it is made
+    // active again (Refiner::activate).
+    bool visStale = false;
 
     double formFactor() const { return unoccluded * double(visStatic) * double(visDynamic); }
     double visibility() const { return double(visStatic) * double(visDynamic); }

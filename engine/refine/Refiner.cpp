@@ -125,6 +125,31 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
 }
 
 Link Refiner::compute(ElementId s, ElementId r) const {
+    Link l = computeUnoccluded(s, r);
+    if (l.live) refreshVisibility(l);
+    return l;
+}
+
+void Refiner::refreshVisibility(Link& l) const {
+    l.visStale = false;
+    l.visStatic = l.visDynamic = 1.0f;
+    if (!(l.unoccluded > 0.0)) return;
+    Segments seg;
+    segments(l.source, l.receiver, seg);
+    l.visStatic = static_cast<float>(unoccluded(Layer::Static, seg));
+    l.visDynamic = static_cast<float>(unoccluded(Layer::Dynamic, seg));
+}
+
+bool Refiner::refinesAtAnyVisibility(const Link& link) const {
+    if (chooseSplit(link) == Split::None) return false;
+    if (!admissible(link.source, link.receiver)) return true;
+    // wouldRefine's bound is at least this for a cluster end, whatever v.
+    const bool clusterEnd = !h_[link.source].isSurface() || !h_[link.receiver].isSurface();
+    return clusterEnd && h_[link.source].oracle * h_[link.receiver].area * link.unoccluded >
+                             settings_.epsilon * settings_.referencePower * (1.0 + 1e-9);
+}
+
+Link Refiner::computeUnoccluded(ElementId s, ElementId r) const {
     Link l;
     l.source = s;
     l.receiver = r;
@@ -136,12 +161,7 @@ Link Refiner::compute(ElementId s, ElementId r) const {
     const bool mustRefine = !admissible(s, r);
     if (l.unoccluded <= 0.0 && !dynamic && !mustRefine) return l;  // not live: never carries light
     l.live = true;
-    if (l.unoccluded > 0.0) {
-        Segments seg;
-        segments(s, r, seg);
-        l.visStatic = static_cast<float>(unoccluded(Layer::Static, seg));
-        l.visDynamic = static_cast<float>(unoccluded(Layer::Dynamic, seg));
-    }
+    l.visStale = l.unoccluded > 0.0;
     return l;
 }
 
@@ -180,6 +200,7 @@ void Refiner::activate(LinkId id) {
     r.links.push_back(id);
     h_[l.source].outLinks.push_back(id);
     l.passive = false;
+    if (l.visStale) refreshVisibility(l);
     l.gathered = l.formFactor();
     // In-place gather (eq. 1): the receiver now holds this link's transfer.
     r.irradiance += l.gathered * h_[l.source].gathered;

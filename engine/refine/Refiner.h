@@ -39,6 +39,14 @@ public:
     // The link s -> r computed but not attached; `live` is false when it
     // carries nothing and never can (facing away, both static).
     Link compute(ElementId s, ElementId r) const;
+    // The same without the visibility rays: the link's visibility is stale.
+    Link computeUnoccluded(ElementId s, ElementId r) const;
+    // Casts the rays of both visibility parts (1 where nothing can arrive).
+    void refreshVisibility(Link& link) const;
+    // Whether the link would be refined whatever its visibility (not
+    // admissible, or a cluster end whose unoccluded transfer alone exceeds
+    // the threshold): a p-link then needs no rays to be judged.
+    bool refinesAtAnyVisibility(const Link& link) const;
     // Only the dynamic part of the visibility (sec. 3.4): what a move changes
     // for a link whose two ends stay put.
     float dynamicVisibility(ElementId s, ElementId r) const;

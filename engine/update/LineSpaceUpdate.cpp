@@ -181,16 +181,26 @@ bool LineSpaceUpdate::cutBefore(ElementId s, ElementId r) const {
 
 void LineSpaceUpdate::recompute(LinkId id) {
     Link& l = links_[id];
+    // A p-link refined whatever its visibility is judged without rays; they
+    // are cast if it is ever made active again. Nearly every affected p-link
+    // has a cluster end and is refined (measured in office: 3,843 of the
+    // 4,365 per frame), and its rays were half the link recomputes.
+    const auto lazy = [&] { return l.passive && refiner_.refinesAtAnyVisibility(l); };
     if (layersChanged_ || touches(moved_, h_[l.source].range) || touches(moved_, h_[l.receiver].range)) {
         // An end moved: its form factor and both visibility parts change.
-        const Link fresh = refiner_.compute(l.source, l.receiver);
+        const Link fresh = refiner_.computeUnoccluded(l.source, l.receiver);
         l.unoccluded = fresh.unoccluded;
         l.spread = fresh.spread;
-        l.visStatic = fresh.visStatic;
-        l.visDynamic = fresh.visDynamic;
+        l.visStale = true;
+        if (!lazy()) refiner_.refreshVisibility(l);
     } else if (l.unoccluded > 0.0) {
         // Two-part visibility: only the dynamic object's part can change.
-        l.visDynamic = refiner_.dynamicVisibility(l.source, l.receiver);
+        if (lazy())
+            l.visStale = true;
+        else if (l.visStale)
+            refiner_.refreshVisibility(l);
+        else
+            l.visDynamic = refiner_.dynamicVisibility(l.source, l.receiver);
     }
 }
 

@@ -76,6 +76,7 @@ void recomputeAtAncestors(LinkStore& links, Refiner& refiner, const std::vector<
         l.spread = fresh[i].spread;
         l.visStatic = fresh[i].visStatic;
         l.visDynamic = fresh[i].visDynamic;
+        l.visStale = fresh[i].visStale;
         if (!l.passive) refiner.regather(ids[i]);  // eq. 1
     }
 }
