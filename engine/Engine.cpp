@@ -213,6 +213,7 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
     if (!rigid) throw std::invalid_argument("the transform of '" + s.scene.objects[*s.dynamic].name +
                                             "' is not a finite rigid motion (rotation and translation)");
 
+    const auto start = std::chrono::steady_clock::now();
     const Aabb before = s.scene.objectBounds(*s.dynamic);
     const glm::dmat4 oldToNew = worldFromLocal * glm::inverse(s.scene.objects[*s.dynamic].worldFromLocal);
     Object& o = s.scene.objects[*s.dynamic];
@@ -228,7 +229,10 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
     s.refiner.refreshClusterSamples(cluster);
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
     s.updater.setObstacles(motionObstacles(s.scene, *s.dynamic, before, oldToNew));
-    const FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
+    const double moveSeconds = secondsSince(start);
+    FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
+    stats.moveSeconds = moveSeconds;
+    stats.totalSeconds += moveSeconds;
     s.budget.record(stats.spent, stats.totalSeconds);
     return stats;
 }

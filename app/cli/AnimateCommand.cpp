@@ -60,6 +60,7 @@ void writeFrame(JsonWriter& j, int f, const FrameRecord& r) {
     j.value("traversal", st.traversalSeconds);
     j.value("update", st.updateSeconds);
     j.value("push_pull", st.pushPullSeconds);
+    j.value("move", st.moveSeconds);
     j.value("total", st.totalSeconds);
     j.endObject();
     if (st.budget == kUnlimited)

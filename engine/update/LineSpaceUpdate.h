@@ -30,7 +30,10 @@ struct FrameStats {
     double traversalSeconds = 0.0;
     double updateSeconds = 0.0;  // link update and refinement
     double pushPullSeconds = 0.0;  // partial push-pull and further bounces
-    double totalSeconds = 0.0;
+    // Before those: the object's polygons, H-elements, cluster sample points
+    // and ray-casting layer moved, the obstacles found (Engine).
+    double moveSeconds = 0.0;
+    double totalSeconds = 0.0;  // all of the frame
     std::size_t shaftTests = 0;
     std::size_t candidates = 0;
     std::size_t linksUpdated = 0;
