@@ -247,7 +247,8 @@ int runViewer(const ViewerOptions& options) {
         std::map<std::uint32_t, glm::dmat4> sent;  // the last transform sent per object
         std::string lastMessage;
         bool leftOnScene = false, leftDragged = false;
-        bool gizmoPrinted = false;
+        std::optional<std::uint32_t> gizmoPrintedFor;  // --print-gizmo: the selection last printed
+        bool objectsPrinted = false;
 
         std::shared_ptr<const GpuMesh> gpuMesh;
         std::shared_ptr<const MeshSnapshot> gpuSource;
@@ -349,7 +350,7 @@ int runViewer(const ViewerOptions& options) {
                         engine.post(SetTransform{id, *moved});
                     }
                 }
-                if (options.printGizmo && !gizmoPrinted && !snap->solving) {
+                if (options.printGizmo && gizmoPrintedFor != id && !snap->solving) {
                     if (const auto h = ui::Gizmo::handlePosition(gv, center, ui::GizmoPart::AxisX)) {
                         int wx = 0, wy = 0;
                         glfwGetWindowPos(window, &wx, &wy);
@@ -358,9 +359,22 @@ int runViewer(const ViewerOptions& options) {
                                     wy + int(std::lround(h->y)), wx + int(std::lround(c->x)),
                                     wy + int(std::lround(c->y)));
                         std::fflush(stdout);
-                        gizmoPrinted = true;
+                        gizmoPrintedFor = id;
                     }
                 }
+            }
+
+            // Test hook: where each object's box centre shows, to click on it.
+            if (options.printGizmo && !objectsPrinted && !snap->solving && gpuMesh) {
+                int wx = 0, wy = 0;
+                glfwGetWindowPos(window, &wx, &wy);
+                for (const ObjectInfo& o : snap->objects)
+                    if (o.movable && !o.bounds.empty())
+                        if (const auto c = ui::Gizmo::handlePosition(gv, o.bounds.center(), ui::GizmoPart::None))
+                            std::printf("object: %s %d %d\n", o.name.c_str(), wx + int(std::lround(c->x)),
+                                        wy + int(std::lround(c->y)));
+                std::fflush(stdout);
+                objectsPrinted = true;
             }
 
             // Mouse on the scene: orbit, pan, zoom, pick.

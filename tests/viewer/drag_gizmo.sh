@@ -1,20 +1,40 @@
 #!/usr/bin/env bash
-# Drags the short block's gizmo x-arrow with real X events, as a person would.
-# Run inside one xvfb-run session: drag_gizmo.sh VIEWER SCENE OUTDIR
+# Drags a gizmo's x-arrow with real X events, as a person would: the short
+# block's (preselected), or with PICK the gizmo of the object PICK after
+# clicking on it (any object can be picked and moved).
+# Run inside one xvfb-run session: drag_gizmo.sh VIEWER SCENE OUTDIR [PICK]
 # Writes OUTDIR/{viewer.log,before.png,after.png,overlays.png} and prints
 # "viewer-exit N" last.
 set -u
-viewer=$1 scene=$2 out=$3
+viewer=$1 scene=$2 out=$3 pick=${4:-}
 shot() { xwd -root -silent -display "$DISPLAY" | convert xwd:- "png:$1"; }
+# Waits (up to 30 s) for a line of the log starting with $1.
+wait_for() {
+  for _ in $(seq 300); do
+    grep -q "^$1" "$out/viewer.log" && return 0
+    kill -0 $pid 2>/dev/null || return 1
+    sleep 0.1
+  done
+  return 1
+}
 
-"$viewer" "$scene" --select short-block --log-transforms --print-gizmo --quit-after 60 \
-  >"$out/viewer.log" 2>&1 &
+if [ -n "$pick" ]; then
+  "$viewer" "$scene" --log-transforms --print-gizmo --quit-after 60 >"$out/viewer.log" 2>&1 &
+else
+  "$viewer" "$scene" --select short-block --log-transforms --print-gizmo --quit-after 60 \
+    >"$out/viewer.log" 2>&1 &
+fi
 pid=$!
-for _ in $(seq 300); do
-  grep -q '^gizmo:' "$out/viewer.log" && break
-  kill -0 $pid 2>/dev/null || break
-  sleep 0.1
-done
+if [ -n "$pick" ]; then
+  wait_for "object: $pick "
+  read -r px py < <(awk -v name="$pick" '$1 == "object:" && $2 == name {print $3, $4; exit}' "$out/viewer.log")
+  if [ -z "${px:-}" ]; then echo "no object line for $pick"; kill $pid; wait $pid; echo "viewer-exit $?"; exit 1; fi
+  sleep 0.5
+  xdotool mousemove "$px" "$py"
+  sleep 0.3
+  xdotool click 1
+fi
+wait_for "gizmo:"
 read -r x y < <(awk '/^gizmo:/ {print $3, $4; exit}' "$out/viewer.log")
 if [ -z "${x:-}" ]; then echo "no gizmo line"; kill $pid; wait $pid; echo "viewer-exit $?"; exit 1; fi
 sleep 0.5

@@ -180,6 +180,31 @@ TEST(ViewerTest, DraggingTheGizmoMovesTheBlockAndItsShadow) {
     EXPECT_GT(countPixels(overlays, 400, 0, 1200, 760, red), countPixels(after, 400, 0, 1200, 760, red) + 50);
 }
 
+// Picking by click: the tall block is not marked dynamic; clicking on it
+// selects it, the engine thread attaches it to the root, and its gizmo drags it.
+TEST(ViewerTest, ClickingAnObjectNotMarkedDynamicSelectsAndMovesIt) {
+    ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    ASSERT_EQ(std::system("command -v xdotool >/dev/null && command -v xwd >/dev/null"), 0)
+        << "xdotool and xwd (x11-apps) are needed";
+    TempDir dir;
+    const std::string script = std::string(RADIOSITY_SOURCE_DIR) + "/tests/viewer/drag_gizmo.sh";
+    const ProcessResult r = run("timeout 90 " + kXvfb + shellQuote(script) + " " + shellQuote(kViewer) + " " +
+                                shellQuote(kScene) + " " + shellQuote(dir.path().string()) + " tall-block");
+    const std::string log = readFile((dir / "viewer.log").string());
+    ASSERT_NE(r.output.find("viewer-exit 0"), std::string::npos) << r.output << log;
+    EXPECT_NE(log.find("gizmo:"), std::string::npos) << "the click selected nothing movable\n" << log;
+    EXPECT_NE(log.find("engine: transform tall-block"), std::string::npos) << log;
+    EXPECT_EQ(log.find("engine: transform short-block"), std::string::npos) << log;
+    const Picture before = readPicture((dir / "before.png").string());
+    const Picture after = readPicture((dir / "after.png").string());
+    ASSERT_GE(before.width, 1000);
+    ASSERT_EQ(after.width, before.width);
+    // Where the block's front stood, the back wall shows now; far up the back
+    // wall, little changes.
+    EXPECT_GT(meanAbsDifference(before, after, 530, 330, 600, 460), 10.0);
+    EXPECT_LT(meanAbsDifference(before, after, 700, 150, 800, 250), 2.0);
+}
+
 TEST(ViewerTest, EngineThreadHeadlessStress) {
     const ProcessResult r = run("timeout 120 " + shellQuote(kViewer) + " " + shellQuote(kScene) + " --headless-stress 300");
     ASSERT_EQ(r.exitCode, 0) << r.output;
