@@ -290,6 +290,14 @@ void Hierarchy::removeChildren(ElementId id) {
     }
 }
 
+bool Hierarchy::subtreeUnlinked(ElementId id) const {
+    const HElement& e = elements_[id];
+    if (!e.links.empty() || !e.plinks.empty() || !e.outLinks.empty()) return false;
+    for (ElementId c : e.children)
+        if (!subtreeUnlinked(c)) return false;
+    return true;
+}
+
 void Hierarchy::updateGeometry(ElementId id) {
     HElement& e = elements_[id];
     if (e.isSurface()) {

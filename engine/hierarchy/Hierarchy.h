@@ -58,6 +58,9 @@ public:
     void subdivide(ElementId id);
     // Removes the children (and their subtrees) of a surface element.
     void removeChildren(ElementId id);
+    // Whether no link, p-link or outgoing link touches the subtree of `id`:
+    // subdivision that serves nothing.
+    bool subtreeUnlinked(ElementId id) const;
 
     // Recomputes the geometry of a subtree from the scene's polygons (after
     // subdivision, or after the object moved), then the enclosing boxes.

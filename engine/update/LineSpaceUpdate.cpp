@@ -380,7 +380,7 @@ void LineSpaceUpdate::reinstate(LinkId id) {
     removeLineSpaceChildren(he, sources, id);
     if (h_[he].isSurface() && !h_[he].isLeaf()) {
         bool unlinked = true;
-        for (ElementId c : h_[he].children) unlinked = unlinked && subtreeUnlinked(c);
+        for (ElementId c : h_[he].children) unlinked = unlinked && h_.subtreeUnlinked(c);
         if (unlinked) h_.removeChildren(he);
     }
     refiner_.activate(id);
@@ -410,13 +410,6 @@ void LineSpaceUpdate::removeLineSpaceChildren(ElementId e, const IndexRange& sou
     for (ElementId c : h_[e].children) removeLineSpaceChildren(c, sources, keep);
 }
 
-bool LineSpaceUpdate::subtreeUnlinked(ElementId e) const {
-    const HElement& el = h_[e];
-    if (!el.links.empty() || !el.plinks.empty() || !el.outLinks.empty()) return false;
-    for (ElementId c : el.children)
-        if (!subtreeUnlinked(c)) return false;
-    return true;
-}
 
 void LineSpaceUpdate::updateCandidates(FrameStats& stats, std::size_t budget) {
     RefineHeap heap;

@@ -135,7 +135,6 @@ private:
     void recompute(LinkId id);
     void reinstate(LinkId id);
     void removeLineSpaceChildren(ElementId e, const IndexRange& sources, LinkId keep);
-    bool subtreeUnlinked(ElementId e) const;
     using RefineHeap = std::priority_queue<std::pair<double, LinkId>>;
     void updateCandidates(FrameStats& stats, std::size_t budget);
     // Sec. 5.2: the link with the highest potential power transfer first.

@@ -43,20 +43,12 @@ void unlinkSubtree(Hierarchy& h, LinkStore& links, Refiner& refiner, ElementId c
     }
 }
 
-bool unlinked(const Hierarchy& h, ElementId e) {
-    const HElement& el = h[e];
-    if (!el.links.empty() || !el.plinks.empty() || !el.outLinks.empty()) return false;
-    for (ElementId c : el.children)
-        if (!unlinked(h, c)) return false;
-    return true;
-}
-
 // The subdivision of the object that its new links did not reach goes.
 void pruneSubdivision(Hierarchy& h, ElementId e) {
     HElement& el = h[e];
     if (el.isSurface() && !el.isLeaf()) {
         bool any = false;
-        for (ElementId c : el.children) any = any || !unlinked(h, c);
+        for (ElementId c : el.children) any = any || !h.subtreeUnlinked(c);
         if (!any) {
             h.removeChildren(e);
             return;

@@ -29,4 +29,18 @@ bool allFinite(const RadiositySamples& samples) {
     return !samples.luminance.empty();
 }
 
+SolutionError compareWithFullSolve(const Engine& engine, const EngineSettings& settings, double* fullSeconds) {
+    const auto start = std::chrono::steady_clock::now();
+    Engine full(engine.scene(), settings);
+    full.solve();
+    if (fullSeconds) *fullSeconds = secondsSince(start);
+    return compareSamples(engine.samples(), full.samples());
+}
+
+EngineSettings coarse() {
+    EngineSettings settings;
+    settings.epsilon = 1e-3;
+    return settings;
+}
+
 }  // namespace rad::test

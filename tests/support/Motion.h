@@ -19,5 +19,11 @@ std::uint32_t objectIndex(const Engine& engine, const std::string& name);
 double secondsSince(std::chrono::steady_clock::time_point start);
 // Every sample finite, and some samples.
 bool allFinite(const RadiositySamples& samples);
+// The engine's solution against a from-scratch solve of its current scene at
+// `settings`; the solve's time in *fullSeconds if given.
+SolutionError compareWithFullSolve(const Engine& engine, const EngineSettings& settings,
+                                   double* fullSeconds = nullptr);
+// The default settings at epsilon 1e-3: fast enough for many solves.
+EngineSettings coarse();
 
 }  // namespace rad::test

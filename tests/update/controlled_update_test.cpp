@@ -42,14 +42,9 @@ UpdateSettings withBudget(std::size_t budget) {
 std::string budgetName(std::size_t budget) { return budget == kUnlimited ? "unlimited" : std::to_string(budget); }
 
 using test::checkCoverage;
+using test::coarse;
 using test::CoverageResult;
 using test::roomWithBlock;
-
-EngineSettings coarse() {
-    EngineSettings settings;
-    settings.epsilon = 1e-3;
-    return settings;
-}
 
 // Sec. 6.1: "no matter how much time is allocated for the update, a
 // consistent solution is computed": the links cover line space completely.

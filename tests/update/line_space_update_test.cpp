@@ -28,18 +28,12 @@ namespace {
 using V = glm::dvec3;
 using Clock = std::chrono::steady_clock;
 using test::allFinite;
+using test::coarse;
+using test::compareWithFullSolve;
 using test::objectIndex;
 using test::rotationAbout;
 using test::secondsSince;
 using test::translation;
-
-SolutionError compareWithFullSolve(const Engine& engine, const EngineSettings& settings, double* fullSeconds) {
-    const auto start = Clock::now();
-    Engine full(engine.scene(), settings);
-    full.solve();
-    if (fullSeconds) *fullSeconds = secondsSince(start);
-    return compareSamples(engine.samples(), full.samples());
-}
 
 void printFrame(const char* what, const FrameStats& f) {
     std::printf("  %s: shaftTests %zu candidates %zu linksUpdated %zu reinstated %zu refined %zu changedElements %zu "
@@ -51,12 +45,6 @@ void printFrame(const char* what, const FrameStats& f) {
 Scene office() { return loadGltf(test::sourcePath("scenes/office.gltf")); }
 
 using test::roomWithBlock;
-
-EngineSettings coarse() {
-    EngineSettings settings;
-    settings.epsilon = 1e-3;
-    return settings;
-}
 
 TEST(LineSpaceUpdate, IncrementalMatchesFullSolveInOffice) {
     const auto start = Clock::now();

@@ -24,16 +24,11 @@ namespace {
 
 using V = glm::dvec3;
 using Clock = std::chrono::steady_clock;
+using test::compareWithFullSolve;
 using test::objectIndex;
 using test::rotationAbout;
 using test::secondsSince;
 using test::translation;
-
-SolutionError compareWithFullSolve(const Engine& engine, const EngineSettings& settings) {
-    Engine full(engine.scene(), settings);
-    full.solve();
-    return compareSamples(engine.samples(), full.samples());
-}
 
 void printReinsertion(const char* what, const FrameStats& f, std::size_t linksBefore) {
     std::printf("  %s: removed %zu, recomputed %zu, created %zu (refined %zu) of %zu links and p-links; "

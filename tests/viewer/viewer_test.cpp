@@ -139,14 +139,23 @@ TEST(ViewerTest, WindowShowsTheSolvedSceneAndThePanel) {
     EXPECT_GT(blue, area / 20) << "panel widgets";
 }
 
+bool haveDragTools() { return std::system("command -v xdotool >/dev/null && command -v xwd >/dev/null") == 0; }
+
+// tests/viewer/drag_gizmo.sh under Xvfb, writing into `dir`; `pick`: an object
+// to click on first, or empty for the preselected short block.
+ProcessResult runDragScript(const TempDir& dir, const std::string& pick) {
+    const std::string script = std::string(RADIOSITY_SOURCE_DIR) + "/tests/viewer/drag_gizmo.sh";
+    std::string command = "timeout 90 " + kXvfb + shellQuote(script) + " " + shellQuote(kViewer) + " " +
+                          shellQuote(kScene) + " " + shellQuote(dir.path().string());
+    if (!pick.empty()) command.append(" ").append(shellQuote(pick));  // append: GCC 12's false -Wrestrict
+    return run(command);
+}
+
 TEST(ViewerTest, DraggingTheGizmoMovesTheBlockAndItsShadow) {
     ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
-    ASSERT_EQ(std::system("command -v xdotool >/dev/null && command -v xwd >/dev/null"), 0)
-        << "xdotool and xwd (x11-apps) are needed";
+    ASSERT_TRUE(haveDragTools()) << "xdotool and xwd (x11-apps) are needed";
     TempDir dir;
-    const std::string script = std::string(RADIOSITY_SOURCE_DIR) + "/tests/viewer/drag_gizmo.sh";
-    const ProcessResult r = run("timeout 90 " + kXvfb + shellQuote(script) + " " + shellQuote(kViewer) + " " +
-                      shellQuote(kScene) + " " + shellQuote(dir.path().string()));
+    const ProcessResult r = runDragScript(dir, "");
     const std::string log = readFile((dir / "viewer.log").string());
     ASSERT_NE(r.output.find("viewer-exit 0"), std::string::npos) << r.output << log;
 
@@ -184,12 +193,9 @@ TEST(ViewerTest, DraggingTheGizmoMovesTheBlockAndItsShadow) {
 // selects it, the engine thread attaches it to the root, and its gizmo drags it.
 TEST(ViewerTest, ClickingAnObjectNotMarkedDynamicSelectsAndMovesIt) {
     ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
-    ASSERT_EQ(std::system("command -v xdotool >/dev/null && command -v xwd >/dev/null"), 0)
-        << "xdotool and xwd (x11-apps) are needed";
+    ASSERT_TRUE(haveDragTools()) << "xdotool and xwd (x11-apps) are needed";
     TempDir dir;
-    const std::string script = std::string(RADIOSITY_SOURCE_DIR) + "/tests/viewer/drag_gizmo.sh";
-    const ProcessResult r = run("timeout 90 " + kXvfb + shellQuote(script) + " " + shellQuote(kViewer) + " " +
-                                shellQuote(kScene) + " " + shellQuote(dir.path().string()) + " tall-block");
+    const ProcessResult r = runDragScript(dir, "tall-block");
     const std::string log = readFile((dir / "viewer.log").string());
     ASSERT_NE(r.output.find("viewer-exit 0"), std::string::npos) << r.output << log;
     EXPECT_NE(log.find("gizmo:"), std::string::npos) << "the click selected nothing movable\n" << log;
