@@ -156,10 +156,15 @@ bool LineSpaceUpdate::affectedByMotion(ElementId s, ElementId r) {
     // nor the object's occlusion of its own parts; only static geometry in
     // the object (the obstacles) can come between them.
     if (!layersChanged_ && moved_.contains(h_[s].range) && moved_.contains(h_[r].range)) {
+        const Aabb& a = h_[s].box;
+        const Aabb& b = h_[r].box;
+        const auto near = [&](const Aabb& o) { return Shaft::hullMeets(a, b, o); };
         if (obstacles_.empty()) return false;
         ++shaftTests_;
-        const Shaft shaft(h_[s].box, h_[r].box);
-        return std::any_of(obstacles_.begin(), obstacles_.end(), [&](const Aabb& b) { return shaft.intersects(b); });
+        if (std::none_of(obstacles_.begin(), obstacles_.end(), near)) return false;
+        const Shaft shaft(a, b);
+        return std::any_of(obstacles_.begin(), obstacles_.end(),
+                           [&](const Aabb& o) { return near(o) && shaft.intersects(o); });
     }
     if (touches(moved_, h_[s].range) || touches(moved_, h_[r].range)) return true;
     ++shaftTests_;
