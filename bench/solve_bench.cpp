@@ -6,8 +6,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "Engine.h"
-#include "scene/GltfImport.h"
+#include "radiosity/Engine.h"
+#include "radiosity/Gltf.h"
 
 namespace {
 

@@ -12,9 +12,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tbb/global_control.h>
 
-#include "Engine.h"
+#include "radiosity/Engine.h"
 #include "geometry/Shaft.h"
-#include "scene/GltfImport.h"
+#include "radiosity/Gltf.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "Engine.h"
+#include "radiosity/Engine.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,9 +11,12 @@
 #include "hierarchy/Hierarchy.h"
 #include "links/Link.h"
 #include "refine/Refiner.h"
+#include "snapshot/Sampling.h"
+#include "solve/Solver.h"
 #include "snapshot/RadiositySnapshot.h"
 #include "update/BudgetControl.h"
 #include "update/Obstacles.h"
+#include "update/LineSpaceUpdate.h"
 #include "update/Reinsertion.h"
 
 namespace rad {
@@ -50,7 +53,7 @@ struct Engine::State {
           settings(settings),
           hierarchy(scene, settings.minArea > 0.0 ? settings.minArea : 2e-5 * totalArea(scene)),
           refiner(hierarchy, links, rays,
-                  RefineSettings{settings.epsilon, emittedPower(scene), settings.samplesPerSide, settings.maxLinks}),
+                  RefineSettings{settings.epsilon, emittedPower(scene), settings.samplesPerElement, settings.maxLinks}),
           solver(hierarchy, links),
           updater(hierarchy, links, refiner, solver, emittedPower(scene) / totalArea(scene)) {}
 

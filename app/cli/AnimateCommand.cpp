@@ -16,7 +16,7 @@
 #include "cli/EngineOptions.h"
 #include "cli/Json.h"
 #include "cli/RenderOutput.h"
-#include "scene/GltfImport.h"
+#include "radiosity/Gltf.h"
 
 namespace rad::cli {
 namespace {

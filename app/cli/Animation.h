@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "Engine.h"
+#include "radiosity/Engine.h"
 #include "cli/Args.h"
 
 namespace rad::cli {

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "Engine.h"
+#include "radiosity/Engine.h"
 #include "cli/Args.h"
 
 namespace rad::cli {

@@ -9,8 +9,8 @@
 #include "cli/Args.h"
 #include "cli/Commands.h"
 #include "cli/RenderOutput.h"
-#include "scene/GltfImport.h"
-#include "snapshot/MeshSnapshot.h"
+#include "radiosity/Gltf.h"
+#include "radiosity/Snapshot.h"
 
 namespace rad::cli {
 namespace {

@@ -6,8 +6,8 @@
 #include <string>
 
 #include "cli/Args.h"
-#include "scene/Scene.h"
-#include "snapshot/MeshSnapshot.h"
+#include "radiosity/Scene.h"
+#include "radiosity/Snapshot.h"
 
 namespace rad::cli {
 

@@ -8,14 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "Engine.h"
+#include "radiosity/Engine.h"
 #include "cli/Args.h"
 #include "cli/Commands.h"
 #include "cli/EngineOptions.h"
 #include "cli/Json.h"
 #include "cli/RenderOutput.h"
-#include "scene/GltfExport.h"
-#include "scene/GltfImport.h"
+#include "radiosity/Gltf.h"
 
 namespace rad::cli {
 namespace {

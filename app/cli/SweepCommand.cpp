@@ -15,7 +15,7 @@
 #include "cli/Json.h"
 #include "cli/RenderOutput.h"
 #include "plot/Plot.h"
-#include "scene/GltfImport.h"
+#include "radiosity/Gltf.h"
 
 namespace rad::cli {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "render/VulkanContext.h"
-#include "snapshot/MeshSnapshot.h"
+#include "radiosity/Snapshot.h"
 
 namespace rad {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <thread>
 
-#include "scene/GltfImport.h"
+#include "radiosity/Gltf.h"
 #include "viewer/EngineThread.h"
 #include "viewer/ViewerOptions.h"
 

@@ -4,7 +4,7 @@
 #include <glm/glm.hpp>
 
 #include "render/CameraView.h"
-#include "scene/Scene.h"
+#include "radiosity/Scene.h"
 
 namespace rad::viewer {
 

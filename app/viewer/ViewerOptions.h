@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "Engine.h"
+#include "radiosity/Engine.h"
 
 namespace rad::viewer {
 

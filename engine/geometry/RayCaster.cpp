@@ -178,12 +178,6 @@ struct RayCaster::Impl {
         for (unsigned i = 0; i < from.size(); ++i) blocked += valid[i] == -1 && rays.tfar[i] < 0.0f;
         return blocked;
     }
-
-    // True when a hit lies strictly inside the segment a -> b, away from both ends.
-    bool blocked(const LayerData& l, const glm::dvec3& a, const glm::dvec3& b) const {
-        if (!l.scene) return false;
-        return blockedCount(l, std::span(&a, 1), std::span(&b, 1)) > 0;
-    }
 };
 
 RayCaster::RayCaster() : impl_(std::make_unique<Impl>()) {}
@@ -276,10 +270,6 @@ double RayCaster::unoccludedFraction(Layer layer, std::span<const glm::dvec3> fr
         blocked += impl_->blockedCount(l, from.subspan(i, m), to.subspan(i, m));
     }
     return static_cast<double>(n - blocked) / static_cast<double>(n);
-}
-
-bool RayCaster::occluded(Layer layer, const glm::dvec3& a, const glm::dvec3& b) const {
-    return impl_->blocked(impl_->layer(layer), a, b);
 }
 
 std::optional<RayCaster::Hit> RayCaster::intersect(const glm::dvec3& origin,

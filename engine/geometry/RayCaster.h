@@ -8,7 +8,7 @@
 #include <optional>
 #include <span>
 
-#include "scene/Scene.h"
+#include "radiosity/Scene.h"
 
 namespace rad {
 
@@ -37,7 +37,6 @@ class RayCaster {
     // and kept only if it is farther than the margin from both ends. Thread-safe.
     double unoccludedFraction(Layer layer, std::span<const glm::dvec3> from,
                               std::span<const glm::dvec3> to) const;
-    bool occluded(Layer layer, const glm::dvec3& a, const glm::dvec3& b) const;
 
     // Nearest hit along a ray in either layer (for picking): polygon id and the ray parameter t
     // (hit = origin + t * direction, so a distance when direction is unit), with 0 <= t <= tmax.

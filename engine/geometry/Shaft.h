@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "scene/Scene.h"
+#include "radiosity/Scene.h"
 
 namespace rad {
 

@@ -9,7 +9,7 @@
 
 #include "hierarchy/IndexRange.h"
 #include "links/FormFactor.h"
-#include "scene/Scene.h"
+#include "radiosity/Scene.h"
 
 namespace rad {
 

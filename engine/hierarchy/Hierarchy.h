@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "hierarchy/HElement.h"
-#include "scene/Scene.h"
+#include "radiosity/Scene.h"
 
 namespace rad {
 

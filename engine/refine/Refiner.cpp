@@ -82,7 +82,7 @@ Refiner::Points Refiner::samplePoints(ElementId id) const {
         for (const glm::dvec3& p : clusterSamples_[id]) points.p[points.n++] = p;
         return points;
     }
-    const int order = std::clamp(static_cast<int>(std::lround(std::sqrt(settings_.samplesPerSide))), 1, 4);
+    const int order = std::clamp(static_cast<int>(std::lround(std::sqrt(settings_.samplesPerElement))), 1, 4);
     for (const SamplePoint& s : patchSamples(e.patch, order))
         if (points.n < kMaxPoints) points.p[points.n++] = lift(s.p, e.normal, std::sqrt(e.area));
     return points;
@@ -325,8 +325,6 @@ std::vector<std::pair<ElementId, ElementId>> Refiner::childPairs(const Link& lin
     }
     return pairs;
 }
-
-void Refiner::refine(LinkId id, std::vector<LinkId>& created) { refine(std::vector<LinkId>{id}, created); }
 
 void Refiner::refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created) {
     // Subdivide first (it changes the hierarchy), then compute every new

@@ -22,7 +22,7 @@ struct RefineSettings {
     // emitted power: relative, so the same epsilon suits any scene scale.
     double epsilon = 2e-4;
     double referencePower = 1.0;  // total emitted power (luminance)
-    int samplesPerSide = 4;       // visibility rays: samples on the source x on the receiver
+    int samplesPerElement = 4;       // visibility rays: samples on the source x on the receiver
     std::size_t maxLinks = 4'000'000;  // memory cap on live links and p-links
 };
 
@@ -77,11 +77,10 @@ public:
     // How many links refining this one would create (before dropping those
     // that carry nothing): its cost under a budget.
     std::size_t childCount(const Link& link) const;
-    // Subdivides the link's larger element and replaces the link by its
+    // Subdivides each link's larger element and replaces the link by its
     // line-space children; the link becomes a p-link. Appends the new links.
-    void refine(LinkId id, std::vector<LinkId>& created);
-    // The same for a batch of distinct active links, their new links computed
-    // in parallel.
+    // The links must be distinct and active; their new links are computed in
+    // parallel.
     void refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created);
 
     bool capReached() const { return capReached_; }

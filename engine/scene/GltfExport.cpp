@@ -1,4 +1,4 @@
-#include "scene/GltfExport.h"
+#include "radiosity/Gltf.h"
 
 #include <tiny_gltf.h>
 

@@ -1,4 +1,4 @@
-#include "scene/GltfImport.h"
+#include "radiosity/Gltf.h"
 
 #include <tiny_gltf.h>
 

@@ -1,4 +1,4 @@
-#include "scene/Scene.h"
+#include "radiosity/Scene.h"
 
 namespace rad {
 

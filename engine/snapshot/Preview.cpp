@@ -1,5 +1,5 @@
-#include "scene/Scene.h"
-#include "snapshot/MeshSnapshot.h"
+#include "radiosity/Scene.h"
+#include "radiosity/Snapshot.h"
 
 namespace rad {
 

@@ -1,8 +1,8 @@
 #pragma once
 
 #include "hierarchy/Hierarchy.h"
-#include "scene/Scene.h"
-#include "snapshot/MeshSnapshot.h"
+#include "radiosity/Scene.h"
+#include "radiosity/Snapshot.h"
 
 namespace rad {
 

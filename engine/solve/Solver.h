@@ -6,31 +6,16 @@
 
 #include "hierarchy/Hierarchy.h"
 #include "links/Link.h"
+#include "radiosity/Settings.h"
+#include "radiosity/Stats.h"
 
 namespace rad {
-
-struct SolveSettings {
-    // Converged when the remaining error, extrapolated from the last two
-    // sweeps as a geometric series (delta * r / (1 - r)), is below this
-    // fraction of the mean radiosity.
-    double tolerance = 1e-4;
-    int maxIterations = 5000;
-};
 
 struct SolveResult {
     int iterations = 0;
     bool converged = false;
     double lastChange = 0.0;      // relative change in the last sweep
     double estimatedError = 0.0;  // relative, extrapolated
-};
-
-// Power balance over the leaves (luminance, in scene units of power).
-struct EnergyBalance {
-    double emitted = 0.0;    // sum E A
-    double received = 0.0;   // sum H A, H the irradiance arriving
-    double absorbed = 0.0;   // sum (1 - rho) H A
-    double reflected = 0.0;  // sum rho H A
-    double escaped = 0.0;    // emitted - absorbed: leaves the scene (open scenes) or error
 };
 
 class Solver {

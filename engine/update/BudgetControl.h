@@ -19,9 +19,6 @@ public:
     // overhead does not).
     std::size_t budgetFor(double targetSeconds) const;
 
-    double secondsPerLink() const { return fit().second; }
-    double overheadSeconds() const { return fit().first; }
-
 private:
     std::pair<double, double> fit() const;  // (overhead, cost)
     static constexpr std::size_t kWindow = 32;

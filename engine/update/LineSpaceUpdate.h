@@ -19,48 +19,13 @@
 
 #include "hierarchy/Hierarchy.h"
 #include "links/Link.h"
-#include "update/Reinsertion.h"
+#include "radiosity/Settings.h"
+#include "radiosity/Stats.h"
 
 namespace rad {
 
 class Refiner;
 class Solver;
-
-struct FrameStats {
-    double traversalSeconds = 0.0;
-    double updateSeconds = 0.0;  // link update and refinement
-    double pushPullSeconds = 0.0;  // partial push-pull and further bounces
-    // Before those: the object's polygons, H-elements, cluster sample points
-    // and ray-casting layer moved, the obstacles found (Engine).
-    double moveSeconds = 0.0;
-    double totalSeconds = 0.0;  // all of the frame
-    std::size_t shaftTests = 0;
-    std::size_t candidates = 0;
-    std::size_t linksUpdated = 0;
-    std::size_t reinstated = 0;
-    std::size_t refined = 0;
-    std::size_t changedElements = 0;  // visited by the partial push-pull
-    std::size_t budget = 0;            // link updates allowed (kUnlimited: no limit)
-    std::size_t budgetReinstated = 0;  // p-links reinstated for lack of budget
-    std::size_t pending = 0;           // links left coarser than the criterion asks
-    std::size_t spent = 0;             // link updates made, in budget units
-    std::size_t links = 0;
-    std::size_t elements = 0;
-    int bounces = 0;
-    ReinsertionStats reinsertion;  // choosing a new dynamic object only
-};
-
-inline constexpr std::size_t kUnlimited = static_cast<std::size_t>(-1);
-
-struct UpdateSettings {
-    // Link updates allowed per frame (sec. 6.1): recomputed links, reinstated
-    // p-links and links created by refinement each count one. None: no limit.
-    std::optional<std::size_t> budget;
-    // Further bounces stop when no element's radiosity moved by more than
-    // this fraction of the scene's mean emitted radiosity.
-    double bounceThreshold = 1e-4;
-    int maxBounces = 100;
-};
 
 class LineSpaceUpdate {
 public:

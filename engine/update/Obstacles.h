@@ -17,7 +17,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/Scene.h"
+#include "radiosity/Scene.h"
 
 namespace rad {
 

@@ -27,17 +27,11 @@
 
 #include "hierarchy/Hierarchy.h"
 #include "links/Link.h"
+#include "radiosity/Stats.h"
 
 namespace rad {
 
 class Refiner;
-
-struct ReinsertionStats {
-    std::size_t removed = 0;     // links and p-links with an end in the object
-    std::size_t recomputed = 0;  // links at its former ancestors
-    std::size_t created = 0;     // the object's new links, refinement included
-    std::size_t refined = 0;
-};
 
 // Attaches the object cluster `cluster` to the root and relinks it; the
 // receivers whose irradiance changed are left dirty in the refiner for the

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "image/Image.h"
-#include "scene/GltfImport.h"
+#include "radiosity/Gltf.h"
 #include "support/Cli.h"
 #include "support/TempDir.h"
 

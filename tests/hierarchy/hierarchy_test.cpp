@@ -9,7 +9,7 @@
 #include <string>
 
 #include "hierarchy/Hierarchy.h"
-#include "scene/GltfImport.h"
+#include "radiosity/Gltf.h"
 #include "support/TestScenes.h"
 
 namespace rad {

@@ -12,7 +12,7 @@
 #include "image/Image.h"
 #include "render/OffscreenRenderer.h"
 #include "render/VulkanContext.h"
-#include "snapshot/MeshSnapshot.h"
+#include "radiosity/Snapshot.h"
 
 namespace rad {
 namespace {

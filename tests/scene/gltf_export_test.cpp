@@ -9,9 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "scene/GltfExport.h"
-#include "scene/GltfImport.h"
-#include "scene/Scene.h"
+#include "radiosity/Gltf.h"
+#include "radiosity/Scene.h"
 #include "support/TempDir.h"
 
 namespace rad {

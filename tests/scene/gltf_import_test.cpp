@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/GltfImport.h"
+#include "radiosity/Gltf.h"
 #include "support/TempDir.h"
 
 namespace rad {

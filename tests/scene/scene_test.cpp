@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "scene/Scene.h"
+#include "radiosity/Scene.h"
 
 namespace rad {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "Engine.h"
+#include "radiosity/Engine.h"
 #include "support/TestScenes.h"
 
 namespace rad {

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 #include <map>
 
-#include "Engine.h"
+#include "radiosity/Engine.h"
 #include "support/TestScenes.h"
 
 namespace rad {

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "Engine.h"
+#include "radiosity/Engine.h"
 
 namespace rad::test {
 

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "Engine.h"
+#include "radiosity/Engine.h"
 
 namespace rad::test {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "scene/Scene.h"
+#include "radiosity/Scene.h"
 
 namespace rad::test {
 

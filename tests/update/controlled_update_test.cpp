@@ -17,8 +17,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "Engine.h"
-#include "scene/GltfImport.h"
+#include "radiosity/Engine.h"
+#include "radiosity/Gltf.h"
 #include "support/Coverage.h"
 #include "support/Motion.h"
 #include "support/TestScenes.h"

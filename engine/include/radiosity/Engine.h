@@ -2,64 +2,21 @@
 // The face of the radiosity engine for the programs: build the hierarchy of a
 // scene, solve it, and hand out immutable snapshots and statistics.
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "scene/Scene.h"
-#include "snapshot/MeshSnapshot.h"
-#include "snapshot/Sampling.h"
-#include "solve/Solver.h"
-#include "update/LineSpaceUpdate.h"
+#include <glm/glm.hpp>
+
+#include "radiosity/Scene.h"
+#include "radiosity/Settings.h"
+#include "radiosity/Snapshot.h"
+#include "radiosity/Stats.h"
 
 namespace rad {
-
-struct EngineSettings {
-    double epsilon = 2e-4;  // BF threshold, relative to the total emitted power
-    // Area threshold A_e in square metres; 0 picks 2e-5 of the scene's total
-    // polygon area, so that the default suits any scene scale.
-    double minArea = 0.0;
-    SolveSettings solve;
-    int maxRefineRounds = 16;  // refine / solve rounds before giving up
-    std::size_t maxLinks = 4'000'000;
-    int samplesPerSide = 4;  // visibility rays per link: samplesPerSide^2
-};
-
-struct MemoryStats {
-    std::size_t elements = 0;  // H-elements and their link lists
-    std::size_t links = 0;     // links and p-links
-    std::size_t total() const { return elements + links; }
-};
-
-struct SolveStats {
-    std::size_t polygons = 0;
-    std::size_t elements = 0;
-    std::size_t links = 0;          // active
-    std::size_t passiveLinks = 0;   // p-links
-    int iterations = 0;             // gather/push-pull sweeps, all rounds
-    int refineRounds = 0;
-    bool converged = false;
-    std::string message;            // why it did not converge, or notes
-    double hierarchySeconds = 0.0;
-    double refineSeconds = 0.0;
-    double solveSeconds = 0.0;
-    double minArea = 0.0;
-    MemoryStats memory;
-    EnergyBalance energy;
-};
-
-struct ObjectRadiosity {
-    std::string name;
-    double area = 0.0;
-    glm::dvec3 radiosity{0.0};  // area-weighted mean B over its surfaces
-};
-
-struct SnapshotOverlays {
-    bool modifiedLinks = false;
-    bool changedElements = false;
-};
 
 class Engine {
 public:

@@ -1,0 +1,43 @@
+#pragma once
+// What a user of the engine can set: the accuracy of the solve and the budget
+// of an update.
+
+#include <cstddef>
+#include <optional>
+
+namespace rad {
+
+struct SolveSettings {
+    // Converged when the remaining error, extrapolated from the last two
+    // sweeps as a geometric series (delta * r / (1 - r)), is below this
+    // fraction of the mean radiosity.
+    double tolerance = 1e-4;
+    int maxIterations = 5000;
+};
+
+struct EngineSettings {
+    double epsilon = 2e-4;  // BF threshold, relative to the total emitted power
+    // Area threshold A_e in square metres; 0 picks 2e-5 of the scene's total
+    // polygon area, so that the default suits any scene scale.
+    double minArea = 0.0;
+    SolveSettings solve;
+    int maxRefineRounds = 16;  // refine / solve rounds before giving up
+    std::size_t maxLinks = 4'000'000;
+    // Visibility sample points per element; a link casts the product of its
+    // two ends' counts (16 x 16 at most).
+    int samplesPerElement = 4;
+};
+
+inline constexpr std::size_t kUnlimited = static_cast<std::size_t>(-1);
+
+struct UpdateSettings {
+    // Link updates allowed per frame (sec. 6.1): recomputed links, reinstated
+    // p-links and links created by refinement each count one. None: no limit.
+    std::optional<std::size_t> budget;
+    // Further bounces stop when no element's radiosity moved by more than
+    // this fraction of the scene's mean emitted radiosity.
+    double bounceThreshold = 1e-4;
+    int maxBounces = 100;
+};
+
+}  // namespace rad

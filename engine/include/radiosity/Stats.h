@@ -1,0 +1,83 @@
+#pragma once
+// What the engine reports about a solve and about each frame of an update.
+
+#include <cstddef>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "radiosity/Settings.h"
+
+namespace rad {
+
+// Power balance over the leaves (luminance, in scene units of power).
+struct EnergyBalance {
+    double emitted = 0.0;    // sum E A
+    double received = 0.0;   // sum H A, H the irradiance arriving
+    double absorbed = 0.0;   // sum (1 - rho) H A
+    double reflected = 0.0;  // sum rho H A
+    double escaped = 0.0;    // emitted - absorbed: leaves the scene (open scenes) or error
+};
+
+struct MemoryStats {
+    std::size_t elements = 0;  // H-elements and their link lists
+    std::size_t links = 0;     // links and p-links
+    std::size_t total() const { return elements + links; }
+};
+
+struct SolveStats {
+    std::size_t polygons = 0;
+    std::size_t elements = 0;
+    std::size_t links = 0;          // active
+    std::size_t passiveLinks = 0;   // p-links
+    int iterations = 0;             // gather/push-pull sweeps, all rounds
+    int refineRounds = 0;
+    bool converged = false;
+    std::string message;            // why it did not converge, or notes
+    double hierarchySeconds = 0.0;
+    double refineSeconds = 0.0;
+    double solveSeconds = 0.0;
+    double minArea = 0.0;
+    MemoryStats memory;
+    EnergyBalance energy;
+};
+
+// What choosing an object not yet under the root cost (sec. 3.3).
+struct ReinsertionStats {
+    std::size_t removed = 0;     // links and p-links with an end in the object
+    std::size_t recomputed = 0;  // links at its former ancestors
+    std::size_t created = 0;     // the object's new links, refinement included
+    std::size_t refined = 0;
+};
+
+struct FrameStats {
+    double traversalSeconds = 0.0;
+    double updateSeconds = 0.0;  // link update and refinement
+    double pushPullSeconds = 0.0;  // partial push-pull and further bounces
+    // Before those: the object's polygons, H-elements, cluster sample points
+    // and ray-casting layer moved, the obstacles found (Engine).
+    double moveSeconds = 0.0;
+    double totalSeconds = 0.0;  // all of the frame
+    std::size_t shaftTests = 0;
+    std::size_t candidates = 0;
+    std::size_t linksUpdated = 0;
+    std::size_t reinstated = 0;
+    std::size_t refined = 0;
+    std::size_t changedElements = 0;  // visited by the partial push-pull
+    std::size_t budget = 0;            // link updates allowed (kUnlimited: no limit)
+    std::size_t budgetReinstated = 0;  // p-links reinstated for lack of budget
+    std::size_t pending = 0;           // links left coarser than the criterion asks
+    std::size_t spent = 0;             // link updates made, in budget units
+    std::size_t links = 0;
+    std::size_t elements = 0;
+    int bounces = 0;
+    ReinsertionStats reinsertion;  // choosing a new dynamic object only
+};
+
+struct ObjectRadiosity {
+    std::string name;
+    double area = 0.0;
+    glm::dvec3 radiosity{0.0};  // area-weighted mean B over its surfaces
+};
+
+}  // namespace rad
