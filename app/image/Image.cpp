@@ -1,12 +1,14 @@
 #include "image/Image.h"
 
+#include <cctype>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
-#include <stb/stb_image_write.h>
+#include <stb_image_write.h>
+
+#include "image/AtomicFile.h"
 
 namespace rad {
 namespace {
@@ -20,22 +22,17 @@ std::string lower(std::string s) {
     return s;
 }
 
-void writePng(const Image& image, const std::string& path) {
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(image.width) * image.height * 3);
-    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = encodeSrgb(image.rgb[i]);
-    if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3))
-        throw std::runtime_error(path + ": cannot write PNG");
+// stb_image_write's callback: appends to the std::string behind context.
+void appendBytes(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
 }
 
-void writePfm(const Image& image, const std::string& path) {
-    std::ofstream out(path, std::ios::binary);
-    if (!out) throw std::runtime_error(path + ": cannot open for writing");
+std::string encodePfm(const Image& image) {
     // Negative scale means little-endian; PFM rows go bottom to top.
-    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
-    for (int y = image.height - 1; y >= 0; --y)
-        out.write(reinterpret_cast<const char*>(image.pixel(0, y)),
-                  static_cast<std::streamsize>(sizeof(float) * 3 * image.width));
-    if (!out) throw std::runtime_error(path + ": write failed");
+    std::string bytes = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+    const std::size_t row = sizeof(float) * 3 * static_cast<std::size_t>(image.width);
+    for (int y = image.height - 1; y >= 0; --y) bytes.append(reinterpret_cast<const char*>(image.pixel(0, y)), row);
+    return bytes;
 }
 
 }  // namespace
@@ -46,20 +43,37 @@ unsigned char encodeSrgb(float linear) {
     return static_cast<unsigned char>(std::lround(c * 255.0f));
 }
 
+Rgb8Image encodeSrgb(const Image& image) {
+    Rgb8Image out;
+    out.width = image.width;
+    out.height = image.height;
+    out.rgb.resize(image.rgb.size());
+    for (std::size_t i = 0; i < image.rgb.size(); ++i) out.rgb[i] = encodeSrgb(image.rgb[i]);
+    return out;
+}
+
+void writePng(const Rgb8Image& image, const std::string& path) {
+    if (image.width < 1 || image.height < 1 ||
+        image.rgb.size() != static_cast<std::size_t>(image.width) * image.height * 3)
+        throw std::runtime_error(path + ": cannot write PNG: the image is " + std::to_string(image.width) + "x" +
+                                 std::to_string(image.height) + " with " + std::to_string(image.rgb.size()) +
+                                 " bytes");
+    // Encoded in memory, so that writing the file (and its errors) is done in one place.
+    std::string png;
+    if (!stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 3, image.rgb.data(),
+                                image.width * 3))
+        throw std::runtime_error(path + ": cannot encode PNG");
+    writeFileAtomically(path, png);
+}
+
 void writeImage(const Image& image, const std::string& path) {
     const std::string ext = lower(path);
-    const bool png = endsWith(ext, ".png");
-    if (!png && !endsWith(ext, ".pfm"))
+    if (endsWith(ext, ".png"))
+        writePng(encodeSrgb(image), path);
+    else if (endsWith(ext, ".pfm"))
+        writeFileAtomically(path, encodePfm(image));
+    else
         throw std::runtime_error(path + ": unknown image type (use .png or .pfm)");
-    const std::string tmp = path + ".tmp";
-    try {
-        png ? writePng(image, tmp) : writePfm(image, tmp);
-        std::filesystem::rename(tmp, path);
-    } catch (...) {
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
-        throw;
-    }
 }
 
 Image readPfm(const std::string& path) {

@@ -1,13 +1,11 @@
 #include "render/WindowRenderer.h"
 
-#include <stb_image_write.h>
-
 #include <algorithm>
-#include <filesystem>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
 
+#include "image/Image.h"
 #include "render/VulkanContext.h"
 
 namespace rad {
@@ -377,26 +375,22 @@ void WindowRenderer::endFrame(std::shared_ptr<const void> keepAlive, const std::
 }
 
 void WindowRenderer::writeCapture(const std::string& path, const GpuBuffer& buffer) const {
+    // The swapchain holds sRGB-encoded bytes already (an *_SRGB format, or
+    // the shader encodes for UNORM): only the channel order and alpha go.
+    Rgb8Image image;
+    image.width = static_cast<int>(extent_.width);
+    image.height = static_cast<int>(extent_.height);
     const std::size_t pixels = std::size_t{extent_.width} * extent_.height;
-    std::vector<unsigned char> rgb(pixels * 3);
+    image.rgb.resize(pixels * 3);
     const auto* src = static_cast<const unsigned char*>(buffer.mapped());
     const bool bgra = format_.format == VK_FORMAT_B8G8R8A8_SRGB ||
                       format_.format == VK_FORMAT_B8G8R8A8_UNORM;
     for (std::size_t i = 0; i < pixels; ++i) {
-        rgb[3 * i + 0] = src[4 * i + (bgra ? 2 : 0)];
-        rgb[3 * i + 1] = src[4 * i + 1];
-        rgb[3 * i + 2] = src[4 * i + (bgra ? 0 : 2)];
+        image.rgb[3 * i + 0] = src[4 * i + (bgra ? 2 : 0)];
+        image.rgb[3 * i + 1] = src[4 * i + 1];
+        image.rgb[3 * i + 2] = src[4 * i + (bgra ? 0 : 2)];
     }
-    std::string tmp = path;
-    tmp += ".tmp.png";
-    if (!stbi_write_png(tmp.c_str(), static_cast<int>(extent_.width),
-                        static_cast<int>(extent_.height), 3, rgb.data(),
-                        static_cast<int>(extent_.width) * 3)) {
-        std::string message = "cannot write ";
-        message += path;
-        throw std::runtime_error(message);
-    }
-    std::filesystem::rename(tmp, path);
+    writePng(image, path);
 }
 
 }  // namespace rad

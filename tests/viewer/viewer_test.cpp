@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -113,6 +114,8 @@ TEST(ViewerTest, WindowShowsTheSolvedSceneAndThePanel) {
     const ProcessResult r = run("timeout 60 " + kXvfb + shellQuote(kViewer) + " " + shellQuote(kScene) +
                       " --screenshot-after 1.5 " + shellQuote(png) + " --quit-after 2.5");
     ASSERT_EQ(r.exitCode, 0) << r.output;
+    // Written through the one PNG writer: renamed into place, no temporary left.
+    EXPECT_FALSE(std::filesystem::exists(png + ".tmp"));
     const Picture p = readPicture(png);
     ASSERT_EQ(p.width, 1200) << r.output;
     ASSERT_EQ(p.height, 760);
