@@ -22,6 +22,17 @@ UniqueMemory allocateMemory(const VulkanContext& context, const VkMemoryRequirem
 
 }  // namespace
 
+UniqueImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect) {
+    auto info = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
+    info.image = image;
+    info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    info.format = format;
+    info.subresourceRange = {aspect, 0, 1, 0, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    vkCheck(vkCreateImageView(device, &info, nullptr, &view), "vkCreateImageView");
+    return {device, view};
+}
+
 GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage)
     : size_(size) {
     VkDevice device = context.device();
@@ -71,14 +82,7 @@ GpuImage::GpuImage(const VulkanContext& context, std::uint32_t width, std::uint3
     memory_ = allocateMemory(context, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     vkCheck(vkBindImageMemory(device, image, memory_.get(), 0), "vkBindImageMemory");
 
-    auto viewInfo = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
-    viewInfo.image = image;
-    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = format;
-    viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
-    VkImageView view = VK_NULL_HANDLE;
-    vkCheck(vkCreateImageView(device, &viewInfo, nullptr, &view), "vkCreateImageView");
-    view_ = UniqueImageView(device, view);
+    view_ = createImageView(device, image, format, aspect);
 }
 
 }  // namespace rad

@@ -13,6 +13,9 @@ namespace rad {
 
 class VulkanContext;
 
+// A 2D view of mip level 0, layer 0 of the image.
+UniqueImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect);
+
 // A buffer in host-visible, coherent memory, mapped for its whole life. Mesh
 // data is small next to the cost of a solve, and lavapipe's memory is all
 // host memory anyway, so staging to device-local memory is not worth it here.

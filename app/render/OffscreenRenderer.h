@@ -13,7 +13,9 @@
 #include <optional>
 
 #include "image/Image.h"
+#include "render/Commands.h"
 #include "render/GpuResources.h"
+#include "render/ImageReadback.h"
 #include "render/MeshRenderer.h"
 #include "render/VkCheck.h"
 
@@ -25,7 +27,6 @@ struct MeshSnapshot;
 class OffscreenRenderer {
   public:
     static constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-    static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
     // The context must outlive the renderer. Uses the context's queue; one
     // renderer must not be used by two threads at once.
@@ -41,23 +42,22 @@ class OffscreenRenderer {
     VkRenderPass renderPass() const { return renderPass_.get(); }
 
   private:
+    // The attachments and readback buffer of one image size.
     struct Target {
-        std::uint32_t width = 0;
-        std::uint32_t height = 0;
+        Target(const VulkanContext& context, VkRenderPass renderPass, VkExtent2D extent);
+        VkExtent2D extent;
         GpuImage color;
         GpuImage depth;
         UniqueFramebuffer framebuffer;
-        GpuBuffer readback;
+        ImageReadback readback;
     };
-
-    void ensureTarget(std::uint32_t width, std::uint32_t height);
 
     const VulkanContext& context_;
     UniqueRenderPass renderPass_;
     std::optional<MeshRenderer> meshRenderer_;
-    UniqueCommandPool commandPool_;  // own pool: recording is not tied to the context's pool
+    CommandPool commandPool_;  // own pool: recording is not tied to the context's pool
     VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;  // freed with the pool
-    UniqueFence fence_;
+    Fence frameDone_;
     std::optional<Target> target_;
 };
 

@@ -77,5 +77,7 @@ using UniqueRenderPass = DeviceHandle<VkRenderPass, &vkDestroyRenderPass>;
 using UniqueFramebuffer = DeviceHandle<VkFramebuffer, &vkDestroyFramebuffer>;
 using UniqueCommandPool = DeviceHandle<VkCommandPool, &vkDestroyCommandPool>;
 using UniqueFence = DeviceHandle<VkFence, &vkDestroyFence>;
+using UniqueSemaphore = DeviceHandle<VkSemaphore, &vkDestroySemaphore>;
+using UniqueSwapchain = DeviceHandle<VkSwapchainKHR, &vkDestroySwapchainKHR>;
 
 }  // namespace rad

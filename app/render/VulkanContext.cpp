@@ -99,11 +99,10 @@ VulkanContext::~VulkanContext() { destroy(); }
 
 void VulkanContext::destroy() {
     if (device_) {
-        vkDeviceWaitIdle(device_);
-        if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
+        vkDeviceWaitIdle(device_);  // unchecked: nothing to do about a failure while tearing down
+        commandPool_ = CommandPool();
         vkDestroyDevice(device_, nullptr);
         device_ = VK_NULL_HANDLE;
-        commandPool_ = VK_NULL_HANDLE;
     }
     if (messenger_) {
         auto destroyMessenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -243,10 +242,7 @@ void VulkanContext::createDevice(const VulkanContextOptions& options) {
     vkCheck(vkCreateDevice(physicalDevice_, &info, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 
-    auto poolInfo = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    poolInfo.queueFamilyIndex = queueFamily_;
-    vkCheck(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_), "vkCreateCommandPool");
+    commandPool_ = CommandPool(device_, queueFamily_, VK_COMMAND_POOL_CREATE_TRANSIENT_BIT);
 }
 
 std::uint32_t VulkanContext::findMemoryType(std::uint32_t typeBits,
@@ -263,38 +259,30 @@ void VulkanContext::submit(const VkSubmitInfo& info, VkFence fence) const {
     vkCheck(vkQueueSubmit(queue_, 1, &info, fence), "vkQueueSubmit");
 }
 
+void VulkanContext::submit(VkCommandBuffer cmd, VkFence fence) const {
+    auto info = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+    info.commandBufferCount = 1;
+    info.pCommandBuffers = &cmd;
+    submit(info, fence);
+}
+
 void VulkanContext::runOneShot(const std::function<void(VkCommandBuffer)>& record) const {
     std::lock_guard poolLock(poolMutex_);
-    auto alloc =
-        vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-    alloc.commandPool = commandPool_;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    vkCheck(vkAllocateCommandBuffers(device_, &alloc, &cmd), "vkAllocateCommandBuffers");
+    VkCommandBuffer cmd = commandPool_.allocate();
     // Freed on every path, including a throwing record().
     struct FreeOnExit {
         VkDevice device;
         VkCommandPool pool;
         VkCommandBuffer cmd;
         ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
-    } freeOnExit{device_, commandPool_, cmd};
+    } freeOnExit{device_, commandPool_.get(), cmd};
 
-    auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vkCheck(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
+    beginRecording(cmd);
     record(cmd);
-    vkCheck(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-
-    auto fenceInfo = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
-    VkFence rawFence = VK_NULL_HANDLE;
-    vkCheck(vkCreateFence(device_, &fenceInfo, nullptr, &rawFence), "vkCreateFence");
-    UniqueFence fence(device_, rawFence);
-    auto submitInfo = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
-    submitInfo.commandBufferCount = 1;
-    submitInfo.pCommandBuffers = &cmd;
-    submit(submitInfo, fence.get());
-    vkCheck(vkWaitForFences(device_, 1, &rawFence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    endRecording(cmd);
+    const Fence done(device_);
+    submit(cmd, done.get());
+    done.wait();
 }
 
 }  // namespace rad

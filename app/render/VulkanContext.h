@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "render/Commands.h"
 #include "render/VkCheck.h"
 
 namespace rad {
@@ -78,6 +79,8 @@ class VulkanContext {
 
     // vkQueueSubmit under a lock: the one queue is shared by every thread.
     void submit(const VkSubmitInfo& info, VkFence fence) const;
+    // The same for one command buffer without semaphores.
+    void submit(VkCommandBuffer cmd, VkFence fence) const;
     // Records with record(), submits and waits. For uploads and other rare work.
     void runOneShot(const std::function<void(VkCommandBuffer)>& record) const;
 
@@ -103,7 +106,7 @@ class VulkanContext {
     std::uint32_t queueFamily_ = 0;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
-    VkCommandPool commandPool_ = VK_NULL_HANDLE;
+    CommandPool commandPool_;  // for runOneShot, under poolMutex_
     mutable std::mutex queueMutex_;
     mutable std::mutex poolMutex_;
 };

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "render/Commands.h"
 #include "render/GpuResources.h"
 #include "render/VkCheck.h"
 
@@ -32,7 +33,6 @@ class VulkanContext;
 
 class WindowRenderer {
   public:
-    static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
     static constexpr std::uint32_t kFramesInFlight = 2;
 
     // The surface and context must outlive the renderer. framebufferSize gives
@@ -61,38 +61,41 @@ class WindowRenderer {
     // presented image is also written as an 8-bit PNG (waits for the frame).
     void endFrame(std::shared_ptr<const void> keepAlive, const std::string& capturePath = {});
 
+    // vkDeviceWaitIdle under the queue lock.
     void waitIdle() const;
 
   private:
+    // One frame in flight: its commands, the fence that says they are done,
+    // and what they draw, kept alive until then.
     struct Frame {
-        VkCommandBuffer cmd = VK_NULL_HANDLE;
-        UniqueFence fence;
-        VkSemaphore imageAvailable = VK_NULL_HANDLE;
+        VkCommandBuffer cmd = VK_NULL_HANDLE;  // freed with the pool
+        Fence done;
+        UniqueSemaphore imageAvailable;
         std::shared_ptr<const void> keepAlive;
     };
 
     void createSwapchain();
     void destroySwapchain();
-    void writeCapture(const std::string& path, const GpuBuffer& buffer) const;
+    void writeCapture(const std::string& path, const void* pixels) const;
 
     const VulkanContext& context_;
     VkSurfaceKHR surface_;
     std::function<VkExtent2D()> framebufferSize_;
     VkSurfaceFormatKHR format_{};
     UniqueRenderPass renderPass_;
-    UniqueCommandPool commandPool_;
+    CommandPool commandPool_;
     std::array<Frame, kFramesInFlight> frames_;
     std::uint32_t frameIndex_ = 0;
 
-    VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
+    UniqueSwapchain swapchain_;
     VkExtent2D extent_{0, 0};
     std::uint32_t minImageCount_ = 2;
     std::uint64_t generation_ = 0;
-    std::vector<VkImage> images_;
+    std::vector<VkImage> images_;  // owned by the swapchain
     std::vector<UniqueImageView> views_;
     std::vector<UniqueFramebuffer> framebuffers_;
-    std::vector<VkSemaphore> renderFinished_;  // one per swapchain image
-    std::vector<VkFence> imageFences_;         // the frame fence last using each image
+    std::vector<UniqueSemaphore> renderFinished_;  // one per swapchain image
+    std::vector<VkFence> imageFences_;             // the frame fence last using each image
     GpuImage depth_;
     bool captureSupported_ = false;
     std::uint32_t currentImage_ = 0;
