@@ -1,8 +1,28 @@
 #version 450
-// Writes linear radiosity; tone mapping happens where the image is encoded.
+// Linear radiosity times the exposure (2^EV, a push constant, so changing it
+// re-uploads nothing). Scaled after interpolation, as a CPU scaling of the
+// rendered image would be, so the two agree to the bit.
+//
+// ENCODE_SRGB (a specialization constant) is set for 8-bit UNORM targets,
+// which show the values as written; float targets and *_SRGB formats (whose
+// hardware encodes on store) take linear values.
+layout(constant_id = 0) const bool ENCODE_SRGB = false;
+
+layout(push_constant) uniform PushConstants {
+    mat4 viewProjection;  // used by the vertex shader
+    float exposureScale;
+} pc;
+
 layout(location = 0) in vec3 inColor;
 layout(location = 0) out vec4 outColor;
 
+// The sRGB curve, as image/Image.cpp's encodeSrgb (without its rounding to 8 bits).
+vec3 encodeSrgb(vec3 linear) {
+    vec3 c = clamp(linear, 0.0, 1.0);
+    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+
 void main() {
-    outColor = vec4(inColor, 1.0);
+    vec3 color = inColor * pc.exposureScale;
+    outColor = vec4(ENCODE_SRGB ? encodeSrgb(color) : color, 1.0);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -17,6 +18,11 @@
 
 namespace rad {
 namespace {
+
+constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+// Up to the last member: no trailing padding is pushed.
+constexpr std::uint32_t kPushSize = offsetof(DrawPushConstants, exposureScale) + sizeof(float);
+static_assert(offsetof(DrawPushConstants, exposureScale) == 64, "the GLSL block (std430) has the float at 64");
 
 std::vector<ColoredVertex> interleave(const std::vector<glm::vec3>& positions,
                                       const std::vector<glm::vec3>& colors, const char* what) {
@@ -67,13 +73,13 @@ GpuMesh::GpuMesh(const VulkanContext& context, const MeshSnapshot& snapshot) {
     lineVertexCount_ = static_cast<std::uint32_t>(lines.size());
 }
 
-MeshRenderer::MeshRenderer(const VulkanContext& context, VkRenderPass renderPass) {
+MeshRenderer::MeshRenderer(const VulkanContext& context, VkRenderPass renderPass, ShaderOutput output) {
     VkDevice device = context.device();
     wideLines_ = context.enabledFeatures().wideLines == VK_TRUE;
     lineWidthRange_[0] = context.properties().limits.lineWidthRange[0];
     lineWidthRange_[1] = context.properties().limits.lineWidthRange[1];
 
-    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::mat4)};
+    const VkPushConstantRange push{kPushStages, 0, kPushSize};
     auto layoutInfo =
         vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     layoutInfo.pushConstantRangeCount = 1;
@@ -83,12 +89,12 @@ MeshRenderer::MeshRenderer(const VulkanContext& context, VkRenderPass renderPass
             "vkCreatePipelineLayout");
     layout_ = UniquePipelineLayout(device, layout);
 
-    surfacePipeline_ = createPipeline(device, renderPass, false);
-    linePipeline_ = createPipeline(device, renderPass, true);
+    surfacePipeline_ = createPipeline(device, renderPass, false, output);
+    linePipeline_ = createPipeline(device, renderPass, true, output);
 }
 
-UniquePipeline MeshRenderer::createPipeline(VkDevice device, VkRenderPass renderPass,
-                                            bool lines) const {
+UniquePipeline MeshRenderer::createPipeline(VkDevice device, VkRenderPass renderPass, bool lines,
+                                            ShaderOutput output) const {
     const UniqueShaderModule vert = createShader(device, gouraud_vert, sizeof(gouraud_vert));
     const UniqueShaderModule frag = createShader(device, gouraud_frag, sizeof(gouraud_frag));
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
@@ -102,6 +108,15 @@ UniquePipeline MeshRenderer::createPipeline(VkDevice device, VkRenderPass render
     stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
     stages[1].module = frag.get();
     stages[1].pName = "main";
+    // gouraud.frag's ENCODE_SRGB (constant_id 0).
+    const VkBool32 encodeSrgb = output == ShaderOutput::SrgbEncoded ? VK_TRUE : VK_FALSE;
+    const VkSpecializationMapEntry encodeEntry{0, 0, sizeof(VkBool32)};
+    VkSpecializationInfo specialization{};
+    specialization.mapEntryCount = 1;
+    specialization.pMapEntries = &encodeEntry;
+    specialization.dataSize = sizeof(VkBool32);
+    specialization.pData = &encodeSrgb;
+    stages[1].pSpecializationInfo = &specialization;
 
     const VkVertexInputBindingDescription binding{0, sizeof(ColoredVertex),
                                                   VK_VERTEX_INPUT_RATE_VERTEX};
@@ -191,13 +206,14 @@ void MeshRenderer::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat
         0.0f, 1.0f};
     const VkRect2D scissor{{0, 0}, extent};
     const VkDeviceSize offset = 0;
+    // exp2 in double, as the CLI's CPU scaling of PNGs does: the same float.
+    DrawPushConstants push{viewProjection, static_cast<float>(std::exp2(options.exposure))};
 
     if (options.surfaces && mesh.indexCount() > 0) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, surfacePipeline_.get());
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::mat4),
-                           &viewProjection);
+        vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, kPushSize, &push);
         VkBuffer vertices = mesh.vertexBuffer();
         vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
         vkCmdBindIndexBuffer(cmd, mesh.indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
@@ -210,8 +226,8 @@ void MeshRenderer::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat
         if (wideLines_)
             vkCmdSetLineWidth(
                 cmd, std::clamp(options.lineWidth, lineWidthRange_[0], lineWidthRange_[1]));
-        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::mat4),
-                           &viewProjection);
+        push.exposureScale = 1.0f;  // overlays are markers: not exposed
+        vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, kPushSize, &push);
         VkBuffer lines = mesh.lineBuffer();
         vkCmdBindVertexBuffers(cmd, 0, 1, &lines, &offset);
         vkCmdDraw(cmd, mesh.lineVertexCount(), 1, 0, 0);

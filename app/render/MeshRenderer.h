@@ -5,8 +5,11 @@
 //   GpuMesh mesh(context, snapshot);                     // upload once per snapshot
 //   MeshRenderer renderer(context, renderPass);          // once per render pass
 //   ... vkCmdBeginRenderPass(cmd, ...);
-//   renderer.draw(cmd, mesh, viewProjection, extent);    // surfaces, then overlay lines
+//   renderer.draw(cmd, mesh, viewProjection, extent, options);  // surfaces, then overlay lines
 //   ... vkCmdEndRenderPass(cmd);
+//
+// Exposure is a draw option (a push constant): changing it re-records, it
+// does not re-upload.
 
 #include <vulkan/vulkan.h>
 
@@ -14,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "render/GpuResources.h"
+#include "render/RenderPass.h"
 #include "render/VkCheck.h"
 
 namespace rad {
@@ -51,12 +55,24 @@ struct MeshDrawOptions {
     bool surfaces = true;
     bool overlays = true;    // the snapshot's line pairs, drawn over the surfaces
     float lineWidth = 1.0f;  // clamped to the device's range; 1 without wideLines
+    // EV: surfaces are written as radiosity times 2^exposure. Overlay lines
+    // are markers and keep their colours.
+    double exposure = 0.0;
+};
+
+// The push constants of shaders/gouraud.vert and gouraud.frag, for both stages.
+struct DrawPushConstants {
+    glm::mat4 viewProjection;
+    float exposureScale;  // 2^EV
 };
 
 class MeshRenderer {
   public:
     // renderPass: subpass 0 has one colour attachment and a depth attachment.
-    MeshRenderer(const VulkanContext& context, VkRenderPass renderPass);
+    // output: what that colour attachment expects (ShaderOutput::SrgbEncoded
+    // for a UNORM swapchain).
+    MeshRenderer(const VulkanContext& context, VkRenderPass renderPass,
+                 ShaderOutput output = ShaderOutput::Linear);
 
     // Records into cmd, inside the render pass. Sets viewport and scissor to
     // the whole extent. viewProjection maps world to Vulkan clip space.
@@ -64,7 +80,8 @@ class MeshRenderer {
               VkExtent2D extent, const MeshDrawOptions& options = {}) const;
 
   private:
-    UniquePipeline createPipeline(VkDevice device, VkRenderPass renderPass, bool lines) const;
+    UniquePipeline createPipeline(VkDevice device, VkRenderPass renderPass, bool lines,
+                                  ShaderOutput output) const;
 
     UniquePipelineLayout layout_;
     UniquePipeline surfacePipeline_;  // triangles, Gouraud, depth test and write, no culling

@@ -3,7 +3,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "render/RenderPass.h"
 #include "render/VulkanContext.h"
 #include "radiosity/Snapshot.h"
 
@@ -52,7 +51,7 @@ OffscreenRenderer::Target::Target(const VulkanContext& context, VkRenderPass ren
       framebuffer(createFramebuffer(context.device(), renderPass, color.view(), depth.view(), size)),
       readback(context, size, 4 * sizeof(float)) {}
 
-OffscreenRenderer::OffscreenRenderer(const VulkanContext& context)
+OffscreenRenderer::OffscreenRenderer(const VulkanContext& context, ShaderOutput output)
     : context_(context), commandPool_(context.device(), context.queueFamily()), frameDone_(context.device()) {
     requireFormat(context.physicalDevice(), kColorFormat,
                   VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT,
@@ -61,7 +60,7 @@ OffscreenRenderer::OffscreenRenderer(const VulkanContext& context)
                   VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT, "D32_SFLOAT depth");
     renderPass_ = createColorDepthRenderPass(context.device(), kColorFormat, kDepthFormat,
                                              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    meshRenderer_.emplace(context, renderPass_.get());
+    meshRenderer_.emplace(context, renderPass_.get(), output);
     commandBuffer_ = commandPool_.allocate();
 }
 

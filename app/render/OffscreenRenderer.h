@@ -17,6 +17,7 @@
 #include "render/GpuResources.h"
 #include "render/ImageReadback.h"
 #include "render/MeshRenderer.h"
+#include "render/RenderPass.h"
 #include "render/VkCheck.h"
 
 namespace rad {
@@ -29,11 +30,12 @@ class OffscreenRenderer {
     static constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
     // The context must outlive the renderer. Uses the context's queue; one
-    // renderer must not be used by two threads at once.
-    explicit OffscreenRenderer(const VulkanContext& context);
+    // renderer must not be used by two threads at once. output:
+    // ShaderOutput::SrgbEncoded renders what a UNORM window would show.
+    explicit OffscreenRenderer(const VulkanContext& context, ShaderOutput output = ShaderOutput::Linear);
 
-    // Linear RGB, top row first, background 0. width and height >= 1, at most
-    // the device's maxImageDimension2D.
+    // Linear RGB (times 2^options.exposure), top row first, background 0.
+    // width and height >= 1, at most the device's maxImageDimension2D.
     Image render(const MeshSnapshot& snapshot, const glm::mat4& viewProjection, int width,
                  int height, const MeshDrawOptions& options = {});
     Image render(const GpuMesh& mesh, const glm::mat4& viewProjection, int width, int height,

@@ -18,6 +18,11 @@
 
 namespace rad {
 
+// What a colour attachment expects the fragment shader to write: linear
+// values (float formats, and *_SRGB formats whose hardware encodes on store),
+// or values already sRGB-encoded (8-bit UNORM formats, shown as written).
+enum class ShaderOutput { Linear, SrgbEncoded };
+
 // 32-bit float depth: lavapipe and every desktop GPU support it as an attachment.
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 

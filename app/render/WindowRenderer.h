@@ -12,7 +12,8 @@
 //
 // The swapchain is recreated when the window size changes or presentation
 // reports it out of date. If the surface offers a *_SRGB format it is chosen,
-// so linear values written by the shaders are encoded by the hardware.
+// so linear values written by the shaders are encoded by the hardware;
+// otherwise shaders encode (shaderOutput()).
 
 #include <vulkan/vulkan.h>
 
@@ -25,6 +26,7 @@
 
 #include "render/Commands.h"
 #include "render/GpuResources.h"
+#include "render/RenderPass.h"
 #include "render/VkCheck.h"
 
 namespace rad {
@@ -46,6 +48,8 @@ class WindowRenderer {
     VkRenderPass renderPass() const { return renderPass_.get(); }
     VkFormat colorFormat() const { return format_.format; }
     bool srgb() const;  // the hardware encodes linear output to sRGB
+    // What shaders drawing here must write: linear, unless the swapchain is UNORM.
+    ShaderOutput shaderOutput() const { return srgb() ? ShaderOutput::Linear : ShaderOutput::SrgbEncoded; }
     VkExtent2D extent() const { return extent_; }
     std::uint32_t minImageCount() const { return minImageCount_; }
     std::uint32_t imageCount() const { return static_cast<std::uint32_t>(images_.size()); }

@@ -94,17 +94,6 @@ std::string freeOutputPath(const std::string& scenePath, const std::string& suff
     }
 }
 
-MeshSnapshot exposed(const MeshSnapshot& mesh, double exposure, bool hardwareSrgb) {
-    MeshSnapshot m = mesh;
-    const auto scale = static_cast<float>(std::exp2(exposure));
-    for (glm::vec3& c : m.colors) {
-        c *= scale;
-        if (!hardwareSrgb)  // UNORM swapchain: encode here (per vertex, close enough)
-            for (int k = 0; k < 3; ++k) c[k] = encodeSrgb(c[k]) / 255.0f;
-    }
-    return m;
-}
-
 }  // namespace
 
 int runViewer(const ViewerOptions& options) {
@@ -181,7 +170,7 @@ int runViewer(const ViewerOptions& options) {
             return VkExtent2D{static_cast<std::uint32_t>(std::max(w, 0)), static_cast<std::uint32_t>(std::max(h, 0))};
         };
         WindowRenderer windowRenderer(*context, surface, framebufferSize);
-        MeshRenderer meshRenderer(*context, windowRenderer.renderPass());
+        MeshRenderer meshRenderer(*context, windowRenderer.renderPass(), windowRenderer.shaderOutput());
         std::optional<OffscreenRenderer> offscreen;
 
         // Dear ImGui.
@@ -249,9 +238,10 @@ int runViewer(const ViewerOptions& options) {
         std::optional<std::uint32_t> gizmoPrintedFor;  // --print-gizmo: the selection last printed
         bool objectsPrinted = false;
 
+        // The GPU copy of the engine's newest mesh. Exposure is a draw option:
+        // moving the slider uploads nothing.
         std::shared_ptr<const GpuMesh> gpuMesh;
         std::shared_ptr<const MeshSnapshot> gpuSource;
-        double gpuExposure = options.exposure;
 
         auto pending = options.screenshots;
         std::sort(pending.begin(), pending.end());
@@ -264,10 +254,9 @@ int runViewer(const ViewerOptions& options) {
             const std::shared_ptr<const ViewerSnapshot> snap = engine.latest();
 
             // Upload a new picture when the engine published one.
-            if (snap->mesh && (snap->mesh != gpuSource || gpuExposure != controls.exposure)) {
+            if (snap->mesh && snap->mesh != gpuSource) {
                 gpuSource = snap->mesh;
-                gpuExposure = controls.exposure;
-                gpuMesh = std::make_shared<const GpuMesh>(*context, exposed(*snap->mesh, gpuExposure, windowRenderer.srgb()));
+                gpuMesh = std::make_shared<const GpuMesh>(*context, *snap->mesh);
                 if (firstMeshAt < 0.0) firstMeshAt = now;
             }
 
@@ -403,16 +392,17 @@ int runViewer(const ViewerOptions& options) {
                 if (io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
             }
             view = camera.view(aspect);
+            MeshDrawOptions drawOptions;
+            drawOptions.exposure = controls.exposure;
 
             // Buttons.
             if ((actions.saveScreenshot || actions.exportMesh) && !snap->mesh) lastMessage = "nothing to save yet";
             else if (actions.saveScreenshot) {
                 try {
                     if (!offscreen) offscreen.emplace(*context);
-                    Image image = offscreen->render(*snap->mesh, view.viewProjectionF(), std::max(fbw, 1), std::max(fbh, 1),
-                                                    {true, true, 1.0f});
-                    const auto scale = static_cast<float>(std::exp2(controls.exposure));
-                    for (float& v : image.rgb) v *= scale;
+                    // The mesh on screen, as on screen: exposure included.
+                    const Image image = offscreen->render(*gpuMesh, view.viewProjectionF(), std::max(fbw, 1),
+                                                          std::max(fbh, 1), drawOptions);
                     const std::string path = freeOutputPath(options.scene, "-screenshot", ".png");
                     writeImage(image, path);
                     lastMessage = "saved ";
@@ -444,7 +434,7 @@ int runViewer(const ViewerOptions& options) {
                 pending.erase(pending.begin());
             }
             if (VkCommandBuffer cmd = windowRenderer.beginFrame({0.02f, 0.02f, 0.025f, 1.0f})) {
-                if (gpuMesh) meshRenderer.draw(cmd, *gpuMesh, view.viewProjectionF(), windowRenderer.extent(), {true, true, 1.0f});
+                if (gpuMesh) meshRenderer.draw(cmd, *gpuMesh, view.viewProjectionF(), windowRenderer.extent(), drawOptions);
                 ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
                 windowRenderer.endFrame(gpuMesh, capture);
                 if (!capture.empty()) {

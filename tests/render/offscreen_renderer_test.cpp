@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -183,6 +184,78 @@ TEST_F(OffscreenRendererTest, ReusedForFramesOfDifferentSizes) {
 TEST_F(OffscreenRendererTest, EmptySnapshotGivesBlackImage) {
     const Image image = renderer_->render(MeshSnapshot{}, kIdentity, 8, 8);
     for (float v : image.rgb) ASSERT_EQ(v, 0.0f);
+}
+
+// Exposure is a push constant: one upload, drawn at several exposures. The
+// float target shows the scaling exactly, above 1 too (no clipping before the
+// PNG encoder).
+TEST_F(OffscreenRendererTest, ExposureScalesSurfacesOnTheGpuWithoutReuploading) {
+    MeshSnapshot snapshot;
+    addRect(snapshot, -1.0f, -1.0f, 0.0f, 1.0f, 0.5f, glm::vec3(0.3f, 0.7f, 1.5f));  // left half
+    addTriangle(snapshot, {{{0.1f, 0.9f, 0.5f}, {0.9f, 0.9f, 0.5f}, {0.5f, -0.9f, 0.5f}}},
+                {kRed, kGreen, kBlue});  // right: interpolated colours
+    const int lineRow = 40;  // a row through both shapes
+    const float y = (lineRow + 0.5f) / 64.0f * 2.0f - 1.0f;  // through the pixel centres
+    snapshot.linePositions = {{-0.8f, y, 0.1f}, {0.8f, y, 0.1f}};
+    snapshot.lineColors = {kYellow, kYellow};
+    const GpuMesh mesh(*context_, snapshot);  // the only upload
+
+    MeshDrawOptions options;
+    const Image ev0 = renderer_->render(mesh, kIdentity, 64, 64, options);
+    options.exposure = 1.0;
+    const Image ev1 = renderer_->render(mesh, kIdentity, 64, 64, options);
+    options.exposure = -1.0;
+    const Image evMinus1 = renderer_->render(mesh, kIdentity, 64, 64, options);
+    options.exposure = 0.7;  // not a power of two
+    const Image ev07 = renderer_->render(mesh, kIdentity, 64, 64, options);
+
+    const auto [lx, ly] = pixelAt(ev0, -0.5f, -0.5f);
+    const auto [rx, ry] = pixelAt(ev0, 0.5f, -0.2f);
+    for (auto [x, yy] : {std::array<int, 2>{lx, ly}, {rx, ry}})
+        for (int c = 0; c < 3; ++c) {
+            const float base = ev0.pixel(x, yy)[c];
+            EXPECT_EQ(ev1.pixel(x, yy)[c], 2.0f * base) << x << "," << yy << " channel " << c;
+            EXPECT_EQ(evMinus1.pixel(x, yy)[c], 0.5f * base) << x << "," << yy << " channel " << c;
+        }
+    expectColor(ev1, lx, ly, glm::vec3(0.6f, 1.4f, 3.0f));
+
+    // The same floats as scaling the EV 0 image on the CPU (what PNG output did
+    // before): every pixel, to the bit. Overlay lines are markers: unscaled.
+    const auto scale = static_cast<float>(std::exp2(0.7));
+    int linePixels = 0;
+    for (int py = 0; py < ev0.height; ++py)
+        for (int px = 0; px < ev0.width; ++px) {
+            const float* p = ev0.pixel(px, py);
+            const bool onLine = py == lineRow && glm::vec3(p[0], p[1], p[2]) == kYellow;
+            linePixels += onLine ? 1 : 0;
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(ev07.pixel(px, py)[c], onLine ? p[c] : p[c] * scale)
+                    << px << "," << py << " channel " << c;
+        }
+    EXPECT_GT(linePixels, 40);
+}
+
+// For a UNORM window the fragment shader encodes: the same curve as the PNG
+// encoder, after exposure.
+TEST_F(OffscreenRendererTest, SrgbEncodedOutputFollowsThePngEncoder) {
+    OffscreenRenderer encoding(*context_, ShaderOutput::SrgbEncoded);
+    const std::array<float, 6> values{0.0f, 0.002f, 0.05f, 0.214f, 0.5f, 0.9f};
+    MeshSnapshot mesh;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const float x0 = -1.0f + 2.0f * static_cast<float>(i) / values.size();
+        addRect(mesh, x0, -1.0f, x0 + 2.0f / values.size(), 1.0f, 0.5f, glm::vec3(values[i], values[i] * 0.5f, 2.0f));
+    }
+    MeshDrawOptions options;
+    options.exposure = 0.5;
+    const Image image = encoding.render(mesh, kIdentity, 6 * 8, 4, options);
+    const auto scale = static_cast<float>(std::exp2(0.5));
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const int x = static_cast<int>(i) * 8 + 4;
+        const std::array<float, 3> linear{values[i] * scale, values[i] * 0.5f * scale, 2.0f * scale};
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(image.pixel(x, 2)[c] * 255.0f, encodeSrgb(linear[c]), 0.51f)
+                << "value " << values[i] << " channel " << c;
+    }
 }
 
 TEST(RenderVulkanContext, ValidationLayerCountsMessages) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -140,6 +141,42 @@ TEST(ViewerTest, WindowShowsTheSolvedSceneAndThePanel) {
     });
     EXPECT_GT(dark, area / 3) << "panel background";
     EXPECT_GT(blue, area / 20) << "panel widgets";
+}
+
+// Exposure is applied on the GPU (a push constant): one EV down halves the
+// linear values on screen. The solve is the same in both runs.
+TEST(ViewerTest, ExposureOneEvDownHalvesTheLinearValuesOnScreen) {
+    ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    TempDir dir;
+    auto shot = [&](const std::string& ev) {
+        const std::string png = (dir / ("ev" + ev + ".png")).string();
+        const ProcessResult r = run("timeout 60 " + kXvfb + shellQuote(kViewer) + " " + shellQuote(kScene) +
+                                    " --exposure " + ev + " --screenshot-after 1.5 " + shellQuote(png) +
+                                    " --quit-after 2.5");
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return readPicture(png);
+    };
+    const Picture ev0 = shot("0");
+    const Picture evMinus1 = shot("-1");
+    ASSERT_EQ(ev0.width, 1200);
+    ASSERT_EQ(evMinus1.width, 1200);
+
+    // Mean linear value over the back wall, high up (lit, not clipped).
+    auto meanLinear = [](const Picture& p) {
+        double sum = 0.0;
+        int n = 0;
+        for (int y = 150; y < 250; ++y)
+            for (int x = 700; x < 800; ++x)
+                for (int c = 0; c < 3; ++c, ++n) {
+                    const double v = p.at(x, y)[c] / 255.0;
+                    sum += v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+                }
+        return sum / n;
+    };
+    const double bright = meanLinear(ev0), dim = meanLinear(evMinus1);
+    EXPECT_GT(bright, 0.02);
+    EXPECT_LT(bright, 0.9) << "clipped: pick a darker region";
+    EXPECT_NEAR(dim / bright, 0.5, 0.02) << bright << " " << dim;
 }
 
 bool haveDragTools() { return std::system("command -v xdotool >/dev/null && command -v xwd >/dev/null") == 0; }
