@@ -4,7 +4,7 @@
 RADIOSITY_PACKAGES=(cmake g++ pkg-config libvulkan-dev mesa-vulkan-drivers vulkan-tools
   vulkan-validationlayers glslang-tools glslang-dev spirv-tools libglfw3-dev libglm-dev
   libtinygltf-dev libimgui-dev libstb-dev libembree-dev libtbb-dev libgtest-dev
-  libbenchmark-dev nlohmann-json3-dev libcli11-dev libcairo2-dev fonts-dejavu-core
+  libbenchmark-dev nlohmann-json3-dev libcli11-dev libcairo2-dev fonts-dejavu-core libexpat1-dev
   xvfb xauth imagemagick x11-apps xdotool python3)
 
 install_missing_packages() {

@@ -194,7 +194,7 @@ int runSweep(const std::vector<std::string>& argv) {
     trade.series.push_back(perBudget);
     rate.series.push_back(perRate);
     if (hi > 0.0) rate.diagonal = std::pair(lo, hi);
-    plot::writeCharts({trade, rate}, (out / "trade").string());
+    plot::writeCharts({trade, rate}, (out / "trade").string(), force);
     for (const char* name : {"trade.json", "trade.csv", "trade.png", "trade.svg"})
         std::printf("wrote %s\n", (out / name).string().c_str());
     return kExitOk;
