@@ -75,6 +75,7 @@ int runCli(const std::vector<std::string>& args) {
     } catch (const UsageError& e) {
         return usageError(e.what());
     }
+    // Exactly one: require_subcommand(1) made CLI11 refuse anything else.
     const auto chosen = std::find_if(commands.begin(), commands.end(), [](const Command& c) { return c.app->parsed(); });
     try {
         return chosen->run();
