@@ -28,43 +28,6 @@ double median(std::vector<double> v) {
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-const std::vector<OptionSpec>& motionOptions() {
-    static const std::vector<OptionSpec> options{
-        {"--object", "NAME", "the object to move, any object with polygons (required)"},
-        {"--frames", "N", "number of equal steps of the motion, 1..100000 (required)"},
-        {"--translate", "X,Y,Z", "total translation in metres (repeatable, summed)"},
-        {"--rotate", "AX,AY,AZ,DEG", "total rotation about the axis through the object's bounding-box centre (repeatable)"},
-    };
-    return options;
-}
-
-MotionRequest motionFrom(const ParsedArgs& args) {
-    MotionRequest r;
-    const std::optional<std::string> object = args.value("--object");
-    if (!object) throw UsageError("needs --object NAME");
-    r.object = *object;
-    if (!args.value("--frames")) throw UsageError("needs --frames N");
-    r.frames = static_cast<int>(parseInteger("--frames", *args.value("--frames"), 1, 100000));
-    for (const std::string& t : args.all("--translate")) {
-        const auto v = parseNumbers("--translate", t, 3);
-        r.motion.translation += glm::dvec3(v[0], v[1], v[2]);
-    }
-    for (const std::string& text : args.all("--rotate")) {
-        const auto v = parseNumbers("--rotate", text, 4);
-        const glm::dvec3 axis(v[0], v[1], v[2]);
-        if (!(glm::length(axis) > 0.0)) throw UsageError("--rotate: the axis must not be zero, got '" + text + "'");
-        r.motion.rotations.push_back({glm::normalize(axis), v[3]});
-    }
-    if (args.all("--translate").empty() && r.motion.rotations.empty())
-        throw UsageError("needs a motion: --translate X,Y,Z and/or --rotate AX,AY,AZ,DEG");
-    return r;
-}
-
-std::optional<std::size_t> parseBudget(const std::string& option, const std::string& text) {
-    if (text == "inf" || text == "unlimited") return std::nullopt;
-    return static_cast<std::size_t>(parseInteger(option, text, 0, 1'000'000'000'000LL));
-}
-
 AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::string& objectName,
                           const Motion& motion, int frames, const BudgetControlSetting& control,
                           References* references, const std::function<void(int, const Engine&, const FrameRecord*)>& onFrame) {

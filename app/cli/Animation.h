@@ -10,7 +10,6 @@
 #include <glm/glm.hpp>
 
 #include "radiosity/Engine.h"
-#include "cli/Args.h"
 
 namespace rad::cli {
 
@@ -66,16 +65,5 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
                           References* references, const std::function<void(int, const Engine&, const FrameRecord*)>& onFrame = {});
 
 double median(std::vector<double> values);
-
-// --object, --frames, --translate, --rotate: shared by animate and sweep.
-const std::vector<OptionSpec>& motionOptions();
-struct MotionRequest {
-    std::string object;
-    int frames = 0;
-    Motion motion;
-};
-MotionRequest motionFrom(const ParsedArgs& args);
-// "inf" or a count of link updates.
-std::optional<std::size_t> parseBudget(const std::string& option, const std::string& text);
 
 }  // namespace rad::cli

@@ -1,24 +1,24 @@
 #pragma once
-// The small argument parser every radiosity-cli command shares.
+// What radiosity-cli's commands and radiosity-viewer share on top of CLI11:
+// exit codes, the parsers of option values, and the checks for options bound
+// to a number.
 //
-// A command declares its options, parses, then reads typed values:
-//   const std::vector<OptionSpec> options{
-//       {"--image", "OUT", "output image, .png or .pfm"},
-//       {"--force", "", "overwrite OUT if it exists"}};
-//   const ParsedArgs args = parseArgs(argv, options);   // throws UsageError
-//   if (args.has("--help")) { printHelp(...); return 0; }
-//   const ImageSize size = parseSize("--size", args.value("--size").value_or("512x512"));
-//
-// Usage problems throw UsageError; main prints "radiosity-cli: <problem>" and
-// exits with kExitUsage.
+// A value parser turns one argument into a value or throws
+// CLI::ValidationError with a message saying what is wrong ("expected WxH,
+// got '12'"); CLI11 puts the option's name in front, so the user reads
+// "--size: expected WxH, got '12'". A command binds one like this:
+//   command.add_option("--size", "image size")->type_name("WxH")
+//       ->each([&size](const std::string& text) { size = parseSize(text); });
+// and a number CLI11 reads itself, with its default shown in --help, like this:
+//   command.add_option("--epsilon", settings.epsilon, "BF threshold")
+//       ->type_name("E")->check(positiveNumber())->capture_default_str();
 
-#include <map>
-#include <optional>
-#include <set>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 namespace rad::cli {
 
@@ -26,55 +26,42 @@ constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;  // the command ran and failed (bad scene, existing output...)
 constexpr int kExitUsage = 2;    // the command line itself is wrong
 
+// A usage problem found after parsing, when it involves several options
+// ("needs a motion"). The program prints it as one line and exits with kExitUsage.
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-struct OptionSpec {
-    std::string name;       // "--image"
-    std::string valueName;  // "OUT"; empty for a flag without a value
-    std::string help;       // one line
-};
+// CLI11's settings for both programs: an option given twice keeps the last
+// value (repeatable options say so), and the help's first column is wide
+// enough for "--rotate AX,AY,AZ,DEG".
+void configure(CLI::App& app);
 
-struct ParsedArgs {
-    std::vector<std::string> positionals;
-    std::map<std::string, std::string> values;  // options with a value (the last one wins)
-    std::set<std::string> flags;                // options without a value, and --help
-    std::vector<std::pair<std::string, std::string>> ordered;  // every valued option, in order
+// Flags take no value: "--force=0" is refused rather than read as "no".
+CLI::Option* addFlag(CLI::App& app, const std::string& name, bool& value, const std::string& help);
 
-    // Every value of a repeatable option, in command-line order.
-    std::vector<std::string> all(const std::string& name) const;
-    bool has(const std::string& name) const {
-        return flags.count(name) > 0 || values.count(name) > 0;
-    }
-    std::optional<std::string> value(const std::string& name) const;
-};
-
-// Accepts "--name VALUE", "--name=VALUE", flags, "--help"/"-h" (always), and
-// "--" to end options. Throws UsageError for an unknown option, a missing
-// value, or a value given to a flag.
-ParsedArgs parseArgs(const std::vector<std::string>& args, const std::vector<OptionSpec>& options);
-
-// Aligned "  --name VALUE  help" lines, one per option, plus --help.
-std::string formatOptions(const std::vector<OptionSpec>& options);
-
-// Typed values. Errors name the option: "--size: expected WxH, got '12'".
-double parseDouble(const std::string& option, const std::string& text);
-long long parseInteger(const std::string& option, const std::string& text, long long lo,
-                       long long hi);
+// Value parsers (see the top of this file).
+double parseNumber(const std::string& text);  // finite
+long long parseInteger(const std::string& text, long long lo, long long hi);
+// "X,Y,Z" (count 3) or "AX,AY,AZ,DEG" (count 4): finite numbers.
+std::vector<double> parseNumbers(const std::string& text, std::size_t count);
+// "a,b,c" -> {"a", "b", "c"}; "" -> {""}.
+std::vector<std::string> splitList(const std::string& text);
 
 struct ImageSize {
     int width = 0;
     int height = 0;
 };
-// "WxH", each in [lo, hi].
-// "X,Y,Z" (count 3) or "AX,AY,AZ,DEG" (count 4): finite numbers.
-std::vector<double> parseNumbers(const std::string& option, const std::string& text, std::size_t count);
+// "WxH" (or "WXH"), digits only, each side in [lo, hi].
+ImageSize parseSize(const std::string& text, int lo = 1, int hi = 8192);
 
-ImageSize parseSize(const std::string& option, const std::string& text, int lo = 1, int hi = 8192);
-
-// Exactly one positional per name; errors name the missing one ("missing SCENE", "unexpected
-// argument 'x'").
-void requirePositionals(const ParsedArgs& args, const std::vector<std::string>& names);
+// Checks for options bound to a number. CLI11 runs them on the text before
+// reading the number itself, so a bad value gets these messages, not CLI11's.
+CLI::Validator number();          // finite
+CLI::Validator positiveNumber();  // finite and > 0
+CLI::Validator numberIn(double lo, double hi);
+// An integer in [lo, hi]. Use it with ->transform(), not ->check(): it
+// rewrites the text in base 10, which CLI11 alone would read "010" as octal 8.
+CLI::Validator integerIn(long long lo, long long hi);
 
 }  // namespace rad::cli

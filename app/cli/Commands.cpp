@@ -1,5 +1,6 @@
 #include "cli/Commands.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -22,51 +23,64 @@ std::string oneLine(std::string text) {
     return out;
 }
 
-void printUsage(std::FILE* to) {
-    std::fprintf(to, "usage: radiosity-cli COMMAND [ARGS...]\n\ncommands:\n");
-    for (const CommandInfo& c : commands()) std::fprintf(to, "  %-8s %s\n", c.name, c.summary);
-    std::fprintf(to,
-                 "\n`radiosity-cli COMMAND --help` describes one command.\n"
-                 "Environment: RADIOSITY_VALIDATION=1 turns on the Vulkan validation layer;\n"
-                 "any message it prints makes the command fail.\n"
-                 "Exit codes: 0 success, 1 failure, 2 bad command line.\n");
+int usageError(const std::string& problem) {
+    std::fprintf(stderr, "radiosity-cli: %s\n", oneLine(problem).c_str());
+    return kExitUsage;
+}
+
+// CLI11 would report a missing, misspelt or misplaced command alike, as "A
+// subcommand is required"; these messages name what is wrong.
+void checkCommandName(const std::vector<std::string>& args, const std::vector<Command>& commands) {
+    if (args.empty()) throw UsageError("missing COMMAND (see --help)");
+    const std::string& name = args[0];
+    if (name == "--help" || name == "-h") return;
+    if (name.starts_with("-")) throw UsageError("unknown option '" + name + "' before COMMAND (see --help)");
+    if (std::none_of(commands.begin(), commands.end(), [&](const Command& c) { return c.app->get_name() == name; }))
+        throw UsageError("unknown command '" + name + "' (see --help)");
 }
 
 }  // namespace
 
-const std::vector<CommandInfo>& commands() {
-    static const std::vector<CommandInfo> table{
-        {"render", "SCENE --image OUT [options]",
-         "render a glTF scene's material preview to PNG or PFM", &runRender},
-        {"solve", "SCENE [options]", "solve a scene's radiosity; report, image and glTF export", &runSolve},
-        {"animate", "SCENE --object NAME --frames N (--translate|--rotate)...",
-         "move an object in steps, updating through the line-space hierarchy", &runAnimate},
-        {"sweep", "SCENE --object NAME --frames N (--translate|--rotate)... --out DIR",
-         "the speed/accuracy trade of budgets and target frame rates", &runSweep},
-    };
-    return table;
+void addScene(CLI::App& command, std::string& scene) {
+    command.add_option("SCENE", scene, "the glTF scene (.gltf or .glb)")->required()->type_name("");
 }
 
 int runCli(const std::vector<std::string>& args) {
+    CLI::App app("Headless solving, animation and rendering of glTF scenes with clustering hierarchical radiosity.",
+                 "radiosity-cli");
+    configure(app);
+    app.require_subcommand(1);
+    app.get_formatter()->label("SUBCOMMAND", "COMMAND");
+    app.footer(
+        "`radiosity-cli COMMAND --help` describes one command.\n"
+        "Environment: RADIOSITY_VALIDATION=1 turns on the Vulkan validation layer;\n"
+        "any message it prints makes the command fail.\n"
+        "Exit codes: 0 success, 1 failure, 2 bad command line.");
+    const std::vector<Command> commands{addRender(app), addSolve(app), addAnimate(app), addSweep(app)};
+    for (const Command& c : commands) c.app->group("Commands");  // the heading of their list in --help
     try {
-        if (args.empty()) throw UsageError("missing COMMAND (see --help)");
-        const std::string& name = args[0];
-        if (name == "--help" || name == "-h" || name == "help") {
-            printUsage(stdout);
-            // Every option of every command, so one page says it all.
-            for (const CommandInfo& c : commands()) {
-                std::printf("\n");
-                c.run({"--help"});
-            }
-            return kExitOk;
-        }
-        for (const CommandInfo& c : commands())
-            if (name == c.name)
-                return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
-        throw UsageError("unknown command '" + name + "' (see --help)");
+        checkCommandName(args, commands);
+        std::vector<std::string> lastFirst(args.rbegin(), args.rend());  // the order CLI11 takes
+        app.parse(lastFirst);
+    } catch (const CLI::CallForHelp&) {
+        // `COMMAND --help` describes that command (CLI11 picks it); plain
+        // `--help` lists the commands, then describes every one of them.
+        std::string text = app.help();
+        if (app.get_subcommands().empty())
+            for (const Command& c : commands) text += "\n" + c.app->help(app.get_name());
+        std::fputs(text.c_str(), stdout);
+        return kExitOk;
+    } catch (const CLI::ParseError& e) {
+        return usageError(e.what());
     } catch (const UsageError& e) {
-        std::fprintf(stderr, "radiosity-cli: %s\n", oneLine(e.what()).c_str());
-        return kExitUsage;
+        return usageError(e.what());
+    }
+    // Exactly one: require_subcommand(1) made CLI11 refuse anything else.
+    const auto chosen = std::find_if(commands.begin(), commands.end(), [](const Command& c) { return c.app->parsed(); });
+    try {
+        return chosen->run();
+    } catch (const UsageError& e) {
+        return usageError(e.what());
     } catch (const std::exception& e) {
         // SceneError included: its message already names the file and the item.
         std::fprintf(stderr, "error: %s\n", oneLine(e.what()).c_str());

@@ -1,29 +1,23 @@
 #include "cli/EngineOptions.h"
 
+#include "cli/Args.h"
+
 namespace rad::cli {
 
-const std::vector<OptionSpec>& engineOptions() {
-    static const std::vector<OptionSpec> options{
-        {"--epsilon", "E", "BF refinement threshold, relative to the total emitted power (default 2e-4)"},
-        {"--min-area", "A", "area threshold in m^2 (default: 2e-5 of the scene's polygon area)"},
-        {"--max-iterations", "N", "gather/push-pull sweeps per round before giving up (default 5000)"},
-    };
-    return options;
-}
-
-EngineSettings engineSettingsFrom(const ParsedArgs& args) {
-    EngineSettings settings;
-    if (auto v = args.value("--epsilon")) {
-        settings.epsilon = parseDouble("--epsilon", *v);
-        if (!(settings.epsilon > 0.0)) throw UsageError("--epsilon: must be > 0, got '" + *v + "'");
-    }
-    if (auto v = args.value("--min-area")) {
-        settings.minArea = parseDouble("--min-area", *v);
-        if (!(settings.minArea > 0.0)) throw UsageError("--min-area: must be > 0, got '" + *v + "'");
-    }
-    if (auto v = args.value("--max-iterations"))
-        settings.solve.maxIterations = static_cast<int>(parseInteger("--max-iterations", *v, 1, 10'000'000));
-    return settings;
+void addEngineOptions(CLI::App& command, EngineSettings& settings) {
+    command.add_option("--epsilon", settings.epsilon, "BF refinement threshold, relative to the total emitted power")
+        ->type_name("E")
+        ->check(positiveNumber())
+        ->capture_default_str();
+    // 0 in the settings means "derive it from the scene", which is no value to type.
+    command.add_option("--min-area", settings.minArea, "area threshold in m^2 (default: 2e-5 of the scene's polygon area)")
+        ->type_name("A")
+        ->check(positiveNumber());
+    command.add_option("--max-iterations", settings.solve.maxIterations,
+                       "gather/push-pull sweeps per round before giving up")
+        ->type_name("N")
+        ->transform(integerIn(1, 10'000'000))
+        ->capture_default_str();
 }
 
 }  // namespace rad::cli

@@ -1,16 +1,14 @@
 #pragma once
 // The solver options that `solve`, `animate` and `sweep` share.
 
-#include <vector>
+#include <CLI/CLI.hpp>
 
 #include "radiosity/Engine.h"
-#include "cli/Args.h"
 
 namespace rad::cli {
 
-// --epsilon, --min-area, --max-iterations.
-const std::vector<OptionSpec>& engineOptions();
-// Reads them (defaults where absent); throws UsageError for bad values.
-EngineSettings engineSettingsFrom(const ParsedArgs& args);
+// --epsilon, --min-area and --max-iterations, bound to `settings` (whose
+// values are the defaults --help shows).
+void addEngineOptions(CLI::App& command, EngineSettings& settings);
 
 }  // namespace rad::cli

@@ -27,9 +27,21 @@ std::string lowerExtension(const std::string& path) {
 
 }  // namespace
 
-void checkImagePath(const std::string& option, const std::string& path) {
+void addImageOptions(CLI::App& command, std::optional<ImageSize>& size, double& exposure) {
+    command.add_option("--size")
+        ->description("image size, each side 1.." + std::to_string(kMaxSide) + " (default: " +
+                      std::to_string(kDefaultHeight) + " high with the camera's\naspect, square without a camera)")
+        ->type_name("WxH")
+        ->each([&size](const std::string& text) { size = parseSize(text, 1, kMaxSide); });
+    command.add_option("--exposure", exposure, "PNG only: multiply by 2^EV before sRGB encoding")
+        ->type_name("EV")
+        ->check(number())
+        ->capture_default_str();
+}
+
+void checkImagePath(const std::string& path) {
     const std::string ext = lowerExtension(path);
-    if (ext != ".png" && ext != ".pfm") throw UsageError(option + ": '" + path + "' must end in .png or .pfm");
+    if (ext != ".png" && ext != ".pfm") throw CLI::ValidationError("'" + path + "' must end in .png or .pfm");
 }
 
 void checkWritable(const std::string& path, bool force) {

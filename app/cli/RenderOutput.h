@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "cli/Args.h"
 #include "radiosity/Scene.h"
 #include "radiosity/Snapshot.h"
@@ -17,8 +19,11 @@ struct ImageRequest {
     double exposure = 0.0;           // PNG only: times 2^EV
 };
 
-// Throws UsageError unless the path ends in .png or .pfm.
-void checkImagePath(const std::string& option, const std::string& path);
+// --size WxH and --exposure EV, bound to `size` and `exposure`.
+void addImageOptions(CLI::App& command, std::optional<ImageSize>& size, double& exposure);
+// Throws CLI::ValidationError unless the path ends in .png or .pfm: an option
+// check, as in add_option("--image", path)->each(checkImagePath).
+void checkImagePath(const std::string& path);
 // Throws std::runtime_error when the file exists and force is false: nothing
 // the user owns is overwritten without asking.
 void checkWritable(const std::string& path, bool force);

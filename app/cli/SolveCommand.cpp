@@ -4,130 +4,79 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "radiosity/Engine.h"
 #include "cli/Args.h"
 #include "cli/Commands.h"
 #include "cli/EngineOptions.h"
-#include "cli/Json.h"
 #include "cli/RenderOutput.h"
+#include "cli/Report.h"
 #include "radiosity/Gltf.h"
 
 namespace rad::cli {
 namespace {
 
-const std::vector<OptionSpec>& solveOptions() {
-    static const std::vector<OptionSpec> options = [] {
-        std::vector<OptionSpec> o = engineOptions();
-        o.insert(o.end(), {
-        {"--report", "R.json", "write a JSON report of counts, times, memory, energy and object radiosity"},
-        {"--image", "OUT", "render the solution: .png sRGB-encoded, .pfm linear radiosity B"},
-        {"--size", "WxH", "image size, each side 1..8192 (default 512 high, the camera's aspect)"},
-        {"--exposure", "EV", "PNG only: multiply by 2^EV before sRGB encoding (default 0)"},
-        {"--export", "OUT.glb", "write the lit mesh as glTF (.glb or .gltf) with COLOR_0 = B"},
-        {"--force", "", "overwrite existing output files"},
-        });
-        return o;
-    }();
-    return options;
-}
-
-void printSolveHelp() {
-    std::printf(
-        "usage: radiosity-cli solve SCENE [--epsilon E] [--min-area A] [--report R.json]\n"
-        "                           [--image OUT.png|OUT.pfm] [--size WxH] [--export OUT.glb]\n"
-        "Solves the glTF SCENE with clustering hierarchical radiosity (BF refinement,\n"
-        "gather and push-pull to convergence) and writes what was asked for.\n\n%s",
-        formatOptions(solveOptions()).c_str());
-}
+struct SolveSettings {
+    std::string scene;
+    EngineSettings engine;
+    std::optional<std::string> report, exportPath;
+    ImageRequest image;  // written when image.path is set
+    bool force = false;
+};
 
 double seconds(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
 }
 
-std::string reportJson(const std::string& scenePath, const EngineSettings& settings, const Engine& engine,
-                       double loadSeconds, double totalSeconds) {
+Report makeReport(const SolveSettings& s, const Engine& engine, double loadSeconds, double totalSeconds) {
     const SolveStats& st = engine.stats();
-    JsonWriter j;
-    j.beginObject();
-    j.value("scene", scenePath);
-    j.value("epsilon", settings.epsilon);
-    j.value("min_area", st.minArea);
-    j.value("polygons", st.polygons);
-    j.value("elements", st.elements);
-    j.value("links", st.links);
-    j.value("passive_links", st.passiveLinks);
-    j.value("iterations", st.iterations);
-    j.value("refine_rounds", st.refineRounds);
-    j.value("converged", st.converged);
-    j.value("message", st.message);
-    j.beginObject("seconds");
-    j.value("load", loadSeconds);
-    j.value("hierarchy", st.hierarchySeconds);
-    j.value("refine", st.refineSeconds);
-    j.value("solve", st.solveSeconds);
-    j.value("total", totalSeconds);
-    j.endObject();
-    j.beginObject("memory_bytes");
-    j.value("total", st.memory.total());
-    j.value("elements", st.memory.elements);
-    j.value("links", st.memory.links);
-    j.endObject();
-    j.beginObject("energy");
-    j.value("emitted", st.energy.emitted);
-    j.value("received", st.energy.received);
-    j.value("absorbed", st.energy.absorbed);
-    j.value("reflected", st.energy.reflected);
-    j.value("escaped", st.energy.escaped);
-    j.endObject();
-    j.beginArray("objects");
-    for (const ObjectRadiosity& o : engine.objectRadiosity()) {
-        j.beginObject();
-        j.value("name", o.name);
-        j.value("area", o.area);
-        j.beginArray("radiosity");
-        j.element(o.radiosity.x).element(o.radiosity.y).element(o.radiosity.z);
-        j.endArray();
-        j.endObject();
-    }
-    j.endArray();
-    j.endObject();
-    return j.str();
+    Report objects = Report::array();
+    for (const ObjectRadiosity& o : engine.objectRadiosity())
+        objects.push_back({{"name", o.name},
+                           {"area", o.area},
+                           {"radiosity", {o.radiosity.x, o.radiosity.y, o.radiosity.z}}});
+    return {
+        {"scene", s.scene},
+        {"epsilon", s.engine.epsilon},
+        {"min_area", st.minArea},
+        {"polygons", st.polygons},
+        {"elements", st.elements},
+        {"links", st.links},
+        {"passive_links", st.passiveLinks},
+        {"iterations", st.iterations},
+        {"refine_rounds", st.refineRounds},
+        {"converged", st.converged},
+        {"message", st.message},
+        {"seconds",
+         {{"load", loadSeconds},
+          {"hierarchy", st.hierarchySeconds},
+          {"refine", st.refineSeconds},
+          {"solve", st.solveSeconds},
+          {"total", totalSeconds}}},
+        {"memory_bytes", {{"total", st.memory.total()}, {"elements", st.memory.elements}, {"links", st.memory.links}}},
+        {"energy",
+         {{"emitted", st.energy.emitted},
+          {"received", st.energy.received},
+          {"absorbed", st.energy.absorbed},
+          {"reflected", st.energy.reflected},
+          {"escaped", st.energy.escaped}}},
+        {"objects", objects},
+    };
 }
 
-}  // namespace
-
-int runSolve(const std::vector<std::string>& argv) {
+int solve(const SolveSettings& s) {
     const auto start = std::chrono::steady_clock::now();
-    const ParsedArgs args = parseArgs(argv, solveOptions());
-    if (args.has("--help")) {
-        printSolveHelp();
-        return kExitOk;
-    }
-    requirePositionals(args, {"SCENE"});
-    const std::string scenePath = args.positionals[0];
-    const EngineSettings settings = engineSettingsFrom(args);
-    const bool force = args.has("--force");
-    std::optional<ImageRequest> image;
-    if (auto v = args.value("--image")) {
-        checkImagePath("--image", *v);
-        image = ImageRequest{*v, std::nullopt, 0.0};
-        if (auto s = args.value("--size")) image->size = parseSize("--size", *s);
-        if (auto e = args.value("--exposure")) image->exposure = parseDouble("--exposure", *e);
-    }
-    const std::optional<std::string> report = args.value("--report");
-    const std::optional<std::string> exportPath = args.value("--export");
-    for (const auto& out : {report, image ? std::optional(image->path) : std::nullopt, exportPath})
-        if (out) checkWritable(*out, force);
+    for (const std::string& out : {s.report.value_or(""), s.image.path, s.exportPath.value_or("")})
+        if (!out.empty()) checkWritable(out, s.force);
 
-    if (!std::filesystem::exists(scenePath)) throw std::runtime_error(scenePath + ": no such file");
-    Scene scene = loadGltf(scenePath);
+    if (!std::filesystem::exists(s.scene)) throw std::runtime_error(s.scene + ": no such file");
+    Scene scene = loadGltf(s.scene);
     const auto loaded = std::chrono::steady_clock::now();
 
-    Engine engine(std::move(scene), settings);
+    Engine engine(std::move(scene), s.engine);
     // Progress only for solves long enough to wonder about.
     const auto progress = [&](const std::string& line) {
         if (seconds(start, std::chrono::steady_clock::now()) > 1.0) std::fprintf(stderr, "solve: %s\n", line.c_str());
@@ -138,22 +87,44 @@ int runSolve(const std::vector<std::string>& argv) {
                 st.links, st.passiveLinks, st.iterations, seconds(start, solved));
     if (!st.message.empty()) std::fprintf(stderr, "solve: %s\n", st.message.c_str());
 
-    if (report) {
-        writeFileAtomically(*report, reportJson(scenePath, settings, engine, seconds(start, loaded), seconds(start, solved)));
-        std::printf("wrote %s\n", report->c_str());
+    if (s.report) {
+        writeReport(*s.report, makeReport(s, engine, seconds(start, loaded), seconds(start, solved)));
+        std::printf("wrote %s\n", s.report->c_str());
     }
-    if (image || exportPath) {
+    if (!s.image.path.empty() || s.exportPath) {
         const MeshSnapshot mesh = engine.snapshot();
-        if (image) {
-            renderToFile(engine.scene(), mesh, *image);
-            std::printf("wrote %s\n", image->path.c_str());
+        if (!s.image.path.empty()) {
+            renderToFile(engine.scene(), mesh, s.image);
+            std::printf("wrote %s\n", s.image.path.c_str());
         }
-        if (exportPath) {
-            exportGltf(mesh, *exportPath);
-            std::printf("wrote %s\n", exportPath->c_str());
+        if (s.exportPath) {
+            exportGltf(mesh, *s.exportPath);
+            std::printf("wrote %s\n", s.exportPath->c_str());
         }
     }
     return st.converged ? kExitOk : kExitFailure;
+}
+
+}  // namespace
+
+Command addSolve(CLI::App& cli) {
+    auto s = std::make_shared<SolveSettings>();
+    CLI::App* c = cli.add_subcommand("solve", "solve a scene's radiosity; report, image and glTF export");
+    c->footer(
+        "Solves the glTF SCENE with clustering hierarchical radiosity (BF refinement,\n"
+        "gather and push-pull to convergence) and writes what was asked for.");
+    addScene(*c, s->scene);
+    addEngineOptions(*c, s->engine);
+    c->add_option("--report", s->report, "write a JSON report of counts, times, memory, energy and object radiosity")
+        ->type_name("R.json");
+    c->add_option("--image", s->image.path, "render the solution: .png sRGB-encoded, .pfm linear radiosity B")
+        ->type_name("OUT")
+        ->each(checkImagePath);
+    addImageOptions(*c, s->image.size, s->image.exposure);
+    c->add_option("--export", s->exportPath, "write the lit mesh as glTF (.glb or .gltf) with COLOR_0 = B")
+        ->type_name("OUT.glb");
+    addFlag(*c, "--force", s->force, "overwrite existing output files");
+    return {c, [s] { return solve(*s); }};
 }
 
 }  // namespace rad::cli

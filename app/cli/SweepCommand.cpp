@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,50 +13,24 @@
 #include "cli/Args.h"
 #include "cli/Commands.h"
 #include "cli/EngineOptions.h"
-#include "cli/Json.h"
+#include "cli/MotionOptions.h"
 #include "cli/RenderOutput.h"
+#include "cli/Report.h"
 #include "plot/Plot.h"
 #include "radiosity/Gltf.h"
 
 namespace rad::cli {
 namespace {
 
-const std::vector<OptionSpec>& sweepOptions() {
-    static const std::vector<OptionSpec> options = [] {
-        std::vector<OptionSpec> o = motionOptions();
-        o.insert(o.end(), {
-            {"--budgets", "B1,B2,...", "link-update budgets per frame, inf for none (default 0,30,100,330,1000,inf)"},
-            {"--target-fps", "F1,F2,...", "target frame rates (default 5,10,30,60)"},
-            {"--out", "DIR", "where trade.json, trade.csv, trade.png and trade.svg go (required)"},
-            {"--force", "", "overwrite existing output files"},
-        });
-        const auto& e = engineOptions();
-        o.insert(o.end(), e.begin(), e.end());
-        return o;
-    }();
-    return options;
-}
-
-void printSweepHelp() {
-    std::printf(
-        "usage: radiosity-cli sweep SCENE --object NAME --frames N (--translate X,Y,Z | --rotate AX,AY,AZ,DEG)...\n"
-        "                           [--budgets 0,30,100,330,1000,inf] [--target-fps 5,10,30,60] --out DIR\n"
-        "Plays the motion once per budget and once per target frame rate, comparing\n"
-        "every frame with a from-scratch solve, and writes the trade between update\n"
-        "time and error as JSON, CSV and a plot.\n\n%s",
-        formatOptions(sweepOptions()).c_str());
-}
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> out;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t comma = text.find(',', start);
-        out.push_back(text.substr(start, comma - start));
-        if (comma == std::string::npos) return out;
-        start = comma + 1;
-    }
-}
+struct SweepSettings {
+    std::string scene;
+    MotionRequest motion;
+    std::vector<std::optional<std::size_t>> budgets;  // nullopt: no limit
+    std::vector<double> rates;                        // target frame rates
+    std::string out;
+    EngineSettings engine;
+    bool force = false;
+};
 
 struct Row {
     std::string kind;  // "budget" or "target_fps"
@@ -67,30 +42,13 @@ struct Row {
 
 std::string budgetText(const std::optional<std::size_t>& b) { return b ? std::to_string(*b) : "inf"; }
 
-}  // namespace
-
-int runSweep(const std::vector<std::string>& argv) {
-    const ParsedArgs args = parseArgs(argv, sweepOptions());
-    if (args.has("--help")) {
-        printSweepHelp();
-        return kExitOk;
-    }
-    requirePositionals(args, {"SCENE"});
-    const std::string scenePath = args.positionals[0];
-    const MotionRequest request = motionFrom(args);
-    std::vector<std::optional<std::size_t>> budgets;
-    for (const std::string& b : splitList(args.value("--budgets").value_or("0,30,100,330,1000,inf")))
-        budgets.push_back(parseBudget("--budgets", b));
-    std::vector<double> rates;
-    for (const std::string& f : splitList(args.value("--target-fps").value_or("5,10,30,60"))) {
-        rates.push_back(parseDouble("--target-fps", f));
-        if (!(rates.back() > 0.0)) throw UsageError("--target-fps: rates must be > 0, got '" + f + "'");
-    }
-    const std::optional<std::string> outDir = args.value("--out");
-    if (!outDir) throw UsageError("sweep needs --out DIR");
-    const EngineSettings settings = engineSettingsFrom(args);
-    const bool force = args.has("--force");
-    const std::filesystem::path out(*outDir);
+int sweep(const SweepSettings& s) {
+    requireMotion(s.motion);
+    const std::string& scenePath = s.scene;
+    const MotionRequest& request = s.motion;
+    const EngineSettings& settings = s.engine;
+    const bool force = s.force;
+    const std::filesystem::path out(s.out);
     for (const char* name : {"trade.json", "trade.csv", "trade.png", "trade.svg"})
         checkWritable((out / name).string(), force);
     if (!std::filesystem::exists(scenePath)) throw std::runtime_error(scenePath + ": no such file");
@@ -123,36 +81,26 @@ int runSweep(const std::vector<std::string>& argv) {
                     row.medianSeconds, row.worstSeconds, row.medianRms, row.worstRms);
         rows.push_back(row);
     };
-    for (const auto& b : budgets) play(Row{"budget", b, std::nullopt}, BudgetControlSetting{b, std::nullopt});
-    for (double f : rates) play(Row{"target_fps", std::nullopt, f}, BudgetControlSetting{std::nullopt, f});
+    for (const auto& b : s.budgets) play(Row{"budget", b, std::nullopt}, BudgetControlSetting{b, std::nullopt});
+    for (double f : s.rates) play(Row{"target_fps", std::nullopt, f}, BudgetControlSetting{std::nullopt, f});
 
     // JSON and CSV.
-    JsonWriter j;
-    j.beginObject();
-    j.value("scene", scenePath);
-    j.value("object", request.object);
-    j.value("frames", request.frames);
-    j.value("epsilon", settings.epsilon);
-    j.value("median_full_solve_seconds", median(references.seconds));
-    j.beginArray("runs");
+    Report runs = Report::array();
     std::string csv = "kind,budget,target_fps,target_seconds,median_seconds,worst_seconds,median_rms,worst_rms,worst_max,median_spent,median_budget\n";
     for (const Row& r : rows) {
-        j.beginObject();
-        j.value("kind", r.kind);
-        if (r.budget) j.value("budget", *r.budget);
-        else j.null("budget");
+        Report run{{"kind", r.kind}, {"budget", valueOrNull(r.budget)}};
         if (r.targetFps) {
-            j.value("target_fps", *r.targetFps);
-            j.value("target_seconds", 1.0 / *r.targetFps);
+            run["target_fps"] = *r.targetFps;
+            run["target_seconds"] = 1.0 / *r.targetFps;
         }
-        j.value("median_seconds", r.medianSeconds);
-        j.value("worst_seconds", r.worstSeconds);
-        j.value("median_rms", r.medianRms);
-        j.value("worst_rms", r.worstRms);
-        j.value("worst_max", r.worstMax);
-        j.value("median_spent", r.medianSpent);
-        j.value("median_budget", r.medianBudget);
-        j.endObject();
+        run.update({{"median_seconds", r.medianSeconds},
+                    {"worst_seconds", r.worstSeconds},
+                    {"median_rms", r.medianRms},
+                    {"worst_rms", r.worstRms},
+                    {"worst_max", r.worstMax},
+                    {"median_spent", r.medianSpent},
+                    {"median_budget", r.medianBudget}});
+        runs.push_back(run);
         char line[512];
         std::snprintf(line, sizeof line, "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", r.kind.c_str(),
                       r.kind == "budget" ? budgetText(r.budget).c_str() : "",
@@ -161,9 +109,12 @@ int runSweep(const std::vector<std::string>& argv) {
                       r.medianRms, r.worstRms, r.worstMax, r.medianSpent, r.medianBudget);
         csv += line;
     }
-    j.endArray();
-    j.endObject();
-    writeFileAtomically((out / "trade.json").string(), j.str());
+    writeReport((out / "trade.json").string(), {{"scene", scenePath},
+                                                {"object", request.object},
+                                                {"frames", request.frames},
+                                                {"epsilon", settings.epsilon},
+                                                {"median_full_solve_seconds", median(references.seconds)},
+                                                {"runs", runs}});
     writeFileAtomically((out / "trade.csv").string(), csv);
 
     // The plot: update time against error per budget; achieved against target frame time.
@@ -198,6 +149,42 @@ int runSweep(const std::vector<std::string>& argv) {
     for (const char* name : {"trade.json", "trade.csv", "trade.png", "trade.svg"})
         std::printf("wrote %s\n", (out / name).string().c_str());
     return kExitOk;
+}
+
+}  // namespace
+
+Command addSweep(CLI::App& cli) {
+    auto s = std::make_shared<SweepSettings>();
+    CLI::App* c = cli.add_subcommand("sweep", "the speed/accuracy trade of budgets and target frame rates");
+    c->footer(
+        "Plays the motion once per budget and once per target frame rate, comparing\n"
+        "every frame with a from-scratch solve, and writes the trade between update\n"
+        "time and error as JSON, CSV and a plot. Needs at least one --translate or --rotate.");
+    addScene(*c, s->scene);
+    addMotionOptions(*c, s->motion);
+    c->add_option("--budgets", "link-update budgets per frame, inf for none")
+        ->type_name("B1,B2,...")
+        ->each([&budgets = s->budgets](const std::string& text) {
+            budgets.clear();
+            for (const std::string& b : splitList(text)) budgets.push_back(parseBudget(b));
+        })
+        ->default_val("0,30,100,330,1000,inf");
+    c->add_option("--target-fps", "target frame rates")
+        ->type_name("F1,F2,...")
+        ->each([&rates = s->rates](const std::string& text) {
+            rates.clear();
+            for (const std::string& f : splitList(text)) {
+                rates.push_back(parseNumber(f));
+                if (!(rates.back() > 0.0)) throw CLI::ValidationError("rates must be > 0, got '" + f + "'");
+            }
+        })
+        ->default_val("5,10,30,60");
+    c->add_option("--out", s->out, "where trade.json, trade.csv, trade.png and trade.svg go")
+        ->type_name("DIR")
+        ->required();
+    addFlag(*c, "--force", s->force, "overwrite existing output files");
+    addEngineOptions(*c, s->engine);
+    return {c, [s] { return sweep(*s); }};
 }
 
 }  // namespace rad::cli

@@ -1,5 +1,6 @@
 #pragma once
-// The viewer's command line.
+// The viewer's command line (declared with CLI11 in viewer/main.cpp; the
+// defaults here are the ones --help shows).
 
 #include <optional>
 #include <string>
@@ -25,11 +26,6 @@ struct ViewerOptions {
     bool printGizmo = false;
     std::optional<int> headlessStress;
 };
-
-// Parses argv; throws std::invalid_argument with a one-line message. Sets
-// help when --help was given.
-ViewerOptions parseViewerArgs(int argc, char** argv, bool& help);
-const char* viewerHelp();
 
 // The window (returns the exit code).
 int runViewer(const ViewerOptions& options);

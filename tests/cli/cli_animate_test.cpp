@@ -13,7 +13,8 @@
 namespace rad {
 namespace {
 
-using test::jsonNumber;
+using test::jsonAt;
+using nlohmann::json;
 using test::runCli;
 using test::shellQuote;
 
@@ -21,25 +22,43 @@ const std::string kCornell = test::sourcePath("scenes/cornell-box.gltf");
 
 TEST(CliAnimate, ReportsEveryFrameAndMatchesAFullSolve) {
     test::TempDir dir;
-    const std::string report = (dir / "a.json").string(), images = (dir / "frames").string();
+    const std::string reportPath = (dir / "a.json").string(), images = (dir / "frames").string();
     const auto r = runCli("animate " + shellQuote(kCornell) +
                           " --object short-block --frames 3 --translate 0,0,0.15 --rotate 0,1,0,15 --compare-full"
-                          " --report " + shellQuote(report) + " --images " + shellQuote(images) + " --size 64x64");
+                          " --report " + shellQuote(reportPath) + " --images " + shellQuote(images) + " --size 64x64");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    const std::string json = test::readFile(report);
-    std::size_t at = 0;
+    const json report = test::readJson(reportPath);
+    EXPECT_EQ(jsonAt(report, "/object"), "short-block");
+    EXPECT_EQ(jsonAt(report, "/frames_requested"), 3);
+    EXPECT_EQ(jsonAt(report, "/selection/marked_dynamic"), true);  // marked in the file
+    const json frames = jsonAt(report, "/frames");
+    ASSERT_TRUE(frames.is_array());
+    ASSERT_EQ(frames.size(), 3u);
     for (int f = 1; f <= 3; ++f) {
-        at = json.find("\"frame\": " + std::to_string(f), at);
-        ASSERT_NE(at, std::string::npos) << "frame " << f;
-        for (const char* key : {"traversal", "update", "push_pull", "total", "shaft_tests", "candidates",
-                                "links_updated", "reinstated", "refined", "changed_elements", "links", "elements",
-                                "full_solve_seconds"})
-            EXPECT_GE(jsonNumber(json, key, at), 0.0) << key << " frame " << f;
-        EXPECT_GT(jsonNumber(json, "candidates", at), 0.0);
+        const json& frame = frames[f - 1];
+        EXPECT_EQ(jsonAt(frame, "/frame"), f);
+        for (const char* key : {"/seconds/traversal", "/seconds/update", "/seconds/push_pull", "/seconds/move",
+                                "/seconds/total", "/full_solve_seconds"}) {
+            EXPECT_TRUE(jsonAt(frame, key).is_number()) << key << " frame " << f;
+            EXPECT_GE(jsonAt(frame, key), 0.0) << key << " frame " << f;
+        }
+        for (const char* key : {"/shaft_tests", "/candidates", "/links_updated", "/reinstated", "/refined",
+                                "/changed_elements", "/links", "/elements", "/spent", "/pending"}) {
+            EXPECT_TRUE(jsonAt(frame, key).is_number_integer()) << key << " frame " << f;
+            EXPECT_GE(jsonAt(frame, key), 0) << key << " frame " << f;
+        }
+        EXPECT_GT(jsonAt(frame, "/candidates"), 0) << "frame " << f;
+        // Neither a budget nor a target frame rate was asked for.
+        EXPECT_TRUE(jsonAt(frame, "/budget").is_null()) << "frame " << f;
+        EXPECT_TRUE(jsonAt(frame, "/target_seconds").is_null()) << "frame " << f;
         // The bound: the incremental solution is within 1% rms of a from-scratch solve.
-        EXPECT_LE(jsonNumber(json, "rms", at), 0.01) << "frame " << f;
+        ASSERT_TRUE(jsonAt(frame, "/error_vs_full/rms").is_number()) << "frame " << f;
+        EXPECT_LE(frame["error_vs_full"]["rms"], 0.01) << "frame " << f;
+        EXPECT_LE(frame["error_vs_full"]["rms"], jsonAt(frame, "/error_vs_full/max")) << "frame " << f;
     }
-    EXPECT_GT(jsonNumber(json, "median_seconds"), 0.0);
+    EXPECT_GT(jsonAt(report, "/summary/median_seconds"), 0.0);
+    EXPECT_GE(jsonAt(report, "/summary/worst_seconds"), jsonAt(report, "/summary/median_seconds"));
+    EXPECT_LE(jsonAt(report, "/summary/worst_rms"), 0.01);
     for (int f = 0; f <= 3; ++f)
         EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(images) / ("frame-000" + std::to_string(f) + ".png")));
 }
@@ -54,15 +73,19 @@ TEST(CliAnimate, ObjectNotMarkedDynamicMovesToo) {
                           " --report " + shellQuote(report));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("'tall-block' is not marked dynamic"), std::string::npos) << r.output;
-    const std::string json = test::readFile(report);
-    EXPECT_NE(json.find("\"marked_dynamic\": false"), std::string::npos) << json;
-    EXPECT_GT(jsonNumber(json, "links_removed"), 0.0);
-    EXPECT_GT(jsonNumber(json, "links_created"), 0.0);
+    const json moved = test::readJson(report);
+    EXPECT_EQ(jsonAt(moved, "/selection/marked_dynamic"), false);
+    EXPECT_GT(jsonAt(moved, "/selection/links_removed"), 0);
+    EXPECT_GT(jsonAt(moved, "/selection/links_created"), 0);
     // Measured 0.5% and 1.4%, as for the same motion with the block marked
     // dynamic in the file (tests/update/reinsertion_test.cpp checks the two
     // agree): this small scene's update error, not the choice's.
-    for (int f = 1; f <= 2; ++f)
-        EXPECT_LE(jsonNumber(json, "rms", json.find("\"frame\": " + std::to_string(f))), 0.02) << "frame " << f;
+    const json frames = jsonAt(moved, "/frames");
+    ASSERT_EQ(frames.size(), 2u);
+    for (int f = 1; f <= 2; ++f) {
+        ASSERT_TRUE(jsonAt(frames[f - 1], "/error_vs_full/rms").is_number()) << "frame " << f;
+        EXPECT_LE(frames[f - 1]["error_vs_full"]["rms"], 0.02) << "frame " << f;
+    }
 }
 
 TEST(CliAnimate, BadArgumentsFailWithOneLine) {
@@ -85,15 +108,24 @@ TEST(CliAnimate, BudgetAndTargetFrameRateAreReported) {
     auto r = runCli("animate " + shellQuote(kCornell) + " --object short-block --frames 2 --translate 0,0,0.1 --budget 0"
                     " --report " + shellQuote(fixed));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    std::string json = test::readFile(fixed);
-    EXPECT_EQ(jsonNumber(json, "budget", json.find("\"frame\": 2")), 0.0);
-    EXPECT_NE(json.find("\"target_seconds\": null"), std::string::npos);
+    json report = test::readJson(fixed);
+    ASSERT_EQ(jsonAt(report, "/frames").size(), 2u);
+    for (const json& frame : report["frames"]) {
+        EXPECT_EQ(jsonAt(frame, "/budget"), 0);
+        EXPECT_TRUE(jsonAt(frame, "/target_seconds").is_null());
+    }
     r = runCli("animate " + shellQuote(kCornell) + " --object short-block --frames 2 --translate 0,0,0.1 --target-fps 30"
                " --report " + shellQuote(paced));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    json = test::readFile(paced);
-    EXPECT_NEAR(jsonNumber(json, "target_seconds"), 1.0 / 30.0, 1e-12);
-    EXPECT_GE(jsonNumber(json, "budget", json.find("\"frame\": 1")), 0.0);
+    report = test::readJson(paced);
+    ASSERT_EQ(jsonAt(report, "/frames").size(), 2u);
+    for (const json& frame : report["frames"]) {
+        ASSERT_TRUE(jsonAt(frame, "/target_seconds").is_number());
+        EXPECT_NEAR(frame["target_seconds"].get<double>(), 1.0 / 30.0, 1e-12);
+        // The budget comes from the frame rate: a count, not "no limit".
+        EXPECT_TRUE(jsonAt(frame, "/budget").is_number_integer());
+        EXPECT_GE(jsonAt(frame, "/budget"), 0);
+    }
     r = runCli("animate " + shellQuote(kCornell) + " --object short-block --frames 2 --translate 0,0,0.1 --budget 3"
                " --target-fps 30");
     EXPECT_EQ(r.exitCode, 2);
@@ -112,13 +144,27 @@ TEST(CliSweep, WritesTheTradeTablesAndPlot) {
     const std::string csv = test::readFile(out + "/trade.csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);  // header and three runs
     EXPECT_NE(csv.find("budget,inf,"), std::string::npos);
-    const std::string json = test::readFile(out + "/trade.json");
+    const json trade = test::readJson(out + "/trade.json");
+    EXPECT_EQ(jsonAt(trade, "/frames"), 2);
+    EXPECT_GT(jsonAt(trade, "/median_full_solve_seconds"), 0.0);
+    // One run per budget, then one per target frame rate, in the order asked.
+    const json runs = jsonAt(trade, "/runs");
+    ASSERT_EQ(runs.size(), 3u);
+    EXPECT_EQ(jsonAt(runs, "/0/kind"), "budget");
+    EXPECT_EQ(jsonAt(runs, "/0/budget"), 0);
+    EXPECT_EQ(jsonAt(runs, "/1/kind"), "budget");
+    EXPECT_TRUE(runs[1].contains("budget") && runs[1]["budget"].is_null());
+    EXPECT_EQ(jsonAt(runs, "/2/kind"), "target_fps");
+    EXPECT_EQ(jsonAt(runs, "/2/target_fps"), 30.0);
+    ASSERT_TRUE(jsonAt(runs, "/2/target_seconds").is_number());
+    EXPECT_NEAR(runs[2]["target_seconds"].get<double>(), 1.0 / 30.0, 1e-12);
+    for (const json& run : runs)
+        for (const char* key : {"/median_seconds", "/worst_seconds", "/median_rms", "/worst_rms", "/worst_max"})
+            EXPECT_TRUE(jsonAt(run, key).is_number()) << key;
     // Without a budget the update matches the full solve within 1%; with
     // budget 0 it is coarser, never better.
-    const double unlimited = jsonNumber(json, "median_rms", json.find("\"budget\": null"));
-    const double none = jsonNumber(json, "median_rms", json.find("\"budget\": 0"));
-    EXPECT_LE(unlimited, 0.01);
-    EXPECT_GE(none, unlimited);
+    EXPECT_LE(jsonAt(runs, "/1/median_rms"), 0.01);
+    EXPECT_GE(jsonAt(runs, "/0/median_rms"), jsonAt(runs, "/1/median_rms"));
     EXPECT_NE(test::readFile(out + "/trade.svg").find("Achieved against target"), std::string::npos);
 }
 

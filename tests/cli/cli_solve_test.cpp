@@ -21,7 +21,7 @@
 namespace rad {
 namespace {
 
-using test::jsonNumber;
+using test::jsonAt;
 using test::runCli;
 using test::shellQuote;
 
@@ -35,24 +35,56 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
     const auto r = runCli("solve " + shellQuote(kCornell) + " --report " + shellQuote(report) + " --image " +
                           shellQuote(pfm) + " --size 128x128 --export " + shellQuote(glb));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    const std::string json = test::readFile(report);
-    for (const char* key : {"polygons", "elements", "links", "passive_links", "iterations"})
-        EXPECT_GT(jsonNumber(json, key), 0.0) << key;
-    EXPECT_NE(json.find("\"converged\": true"), std::string::npos);
-    for (const char* key : {"load", "hierarchy", "refine", "solve", "total"})
-        EXPECT_GE(jsonNumber(json, key), 0.0) << key;
-    EXPECT_GT(jsonNumber(json, "total", json.find("memory_bytes")), 0.0);
+    const nlohmann::json json = test::readJson(report);
+    EXPECT_EQ(json.at("scene"), kCornell);
+    EXPECT_EQ(jsonAt(json, "/epsilon"), 2e-4);  // the default
+    EXPECT_GT(jsonAt(json, "/min_area"), 0.0);
+    for (const char* key : {"/polygons", "/elements", "/links", "/passive_links", "/iterations", "/refine_rounds"}) {
+        EXPECT_TRUE(jsonAt(json, key).is_number_integer()) << key;
+        EXPECT_GT(jsonAt(json, key), 0) << key;
+    }
+    EXPECT_EQ(jsonAt(json, "/converged"), true);
+    EXPECT_EQ(jsonAt(json, "/message"), "");
+    // The phases are parts of the whole.
+    double phases = 0.0;
+    for (const char* key : {"/seconds/load", "/seconds/hierarchy", "/seconds/refine", "/seconds/solve"}) {
+        ASSERT_TRUE(jsonAt(json, key).is_number()) << key;
+        EXPECT_GE(jsonAt(json, key), 0.0) << key;
+        phases += json.at(nlohmann::json::json_pointer(key)).get<double>();
+    }
+    ASSERT_TRUE(jsonAt(json, "/seconds/total").is_number());
+    EXPECT_LE(phases, json["seconds"]["total"].get<double>());
+    ASSERT_TRUE(jsonAt(json, "/memory_bytes/total").is_number_integer());
+    EXPECT_GT(json["memory_bytes"]["total"], 0);
+    EXPECT_EQ(json["memory_bytes"]["total"],
+              jsonAt(json, "/memory_bytes/elements").get<std::size_t>() + jsonAt(json, "/memory_bytes/links").get<std::size_t>());
     // Energy bookkeeping: absorbed + escaped = emitted, reflected + absorbed = received.
-    const double emitted = jsonNumber(json, "emitted"), absorbed = jsonNumber(json, "absorbed"),
-                 reflected = jsonNumber(json, "reflected"), received = jsonNumber(json, "received");
+    const nlohmann::json& energy = json.at("energy");
+    for (const char* key : {"emitted", "received", "absorbed", "reflected", "escaped"})
+        ASSERT_TRUE(energy.contains(key) && energy[key].is_number()) << key;
+    const double emitted = energy["emitted"], absorbed = energy["absorbed"], reflected = energy["reflected"],
+                 received = energy["received"], escaped = energy["escaped"];
     EXPECT_GT(emitted, 0.0);
     EXPECT_NEAR(reflected + absorbed, received, 1e-9 * received);
-    EXPECT_LT(absorbed, emitted * 1.01);  // the box is open at the front: some light leaves
+    EXPECT_NEAR(absorbed + escaped, emitted, 1e-9 * emitted);
+    EXPECT_GT(escaped, 0.0);  // the box is open at the front: some light leaves
+    // One entry per object of the box, each with its area and mean RGB radiosity.
+    const nlohmann::json& objects = json.at("objects");
+    ASSERT_TRUE(objects.is_array());
+    EXPECT_EQ(objects.size(), 8u);
+    const nlohmann::json* light = nullptr;
+    for (const nlohmann::json& o : objects) {
+        ASSERT_TRUE(o.at("name").is_string());
+        EXPECT_GT(o.at("area"), 0.0) << o["name"];
+        ASSERT_EQ(o.at("radiosity").size(), 3u) << o["name"];
+        for (const nlohmann::json& b : o["radiosity"]) EXPECT_GE(b, 0.0) << o["name"];
+        if (o["name"] == "light") light = &o;
+    }
     // The light reads its emission plus what it reflects: at least E = (17, 12, 4).
-    const std::size_t light = json.find("\"name\": \"light\"");
-    ASSERT_NE(light, std::string::npos);
-    const std::size_t values = json.find('[', json.find("\"radiosity\"", light));
-    EXPECT_GE(std::strtod(json.c_str() + values + 1, nullptr), 17.0);
+    ASSERT_NE(light, nullptr);
+    EXPECT_GE((*light)["radiosity"][0], 17.0);
+    EXPECT_GE((*light)["radiosity"][1], 12.0);
+    EXPECT_GE((*light)["radiosity"][2], 4.0);
 
     const Image image = readPfm(pfm);
     ASSERT_EQ(image.width, 128);

@@ -3,9 +3,7 @@
 #include <sys/wait.h>
 
 #include <array>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <iterator>
 
@@ -35,10 +33,11 @@ std::string readFile(const std::string& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-double jsonNumber(const std::string& json, const std::string& key, std::size_t from) {
-    const std::size_t at = json.find("\"" + key + "\":", from);
-    if (at == std::string::npos) return NAN;
-    return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
+nlohmann::json readJson(const std::string& path) { return nlohmann::json::parse(readFile(path)); }
+
+nlohmann::json jsonAt(const nlohmann::json& json, const std::string& pointer) {
+    const nlohmann::json::json_pointer at(pointer);
+    return json.contains(at) ? json.at(at) : nlohmann::json();
 }
 
 }  // namespace rad::test

@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace rad::test {
 
 struct RunResult {
@@ -14,7 +16,11 @@ std::string shellQuote(const std::string& s);
 // Runs `radiosity-cli ARGUMENTS` with RADIOSITY_VALIDATION=1.
 RunResult runCli(const std::string& arguments);
 std::string readFile(const std::string& path);
-// The number after "key": in a JSON text (first occurrence), or NaN.
-double jsonNumber(const std::string& json, const std::string& key, std::size_t from = 0);
+// A JSON file, parsed; throws nlohmann::json::parse_error (the test fails
+// with it) when the file is missing or not JSON.
+nlohmann::json readJson(const std::string& path);
+// The value at a JSON pointer ("/seconds/total"), or null when there is none,
+// so that a missing key fails the assertion on its value instead of throwing.
+nlohmann::json jsonAt(const nlohmann::json& json, const std::string& pointer);
 
 }  // namespace rad::test

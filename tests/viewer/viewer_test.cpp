@@ -3,6 +3,7 @@
 // Every run has the validation layer on and a time limit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <utility>
 #include <vector>
 
 #include "support/Cli.h"
@@ -268,6 +270,39 @@ TEST(ViewerTest, EngineThreadMovesAnObjectNotMarkedDynamic) {
                                    " --select nobody --headless-stress 10");
     EXPECT_NE(none.exitCode, 0);
     EXPECT_NE(none.output.find("'nobody'"), std::string::npos) << none.output;
+}
+
+TEST(ViewerTest, HelpShowsTheDefaults) {
+    const ProcessResult r = run("timeout 20 " + shellQuote(kViewer) + " --help");
+    EXPECT_EQ(r.exitCode, 0);
+    for (const char* shown : {"--size WxH=1200x760", "--target-fps F=30", "--epsilon E=0.0002", "--exposure EV=0"})
+        EXPECT_NE(r.output.find(shown), std::string::npos) << shown << "\n" << r.output;
+}
+
+// A bad option or value: one line naming it, exit code 2, no window.
+TEST(ViewerTest, CommandLineMistakesExitWithCode2) {
+    for (const auto& [args, named] : std::vector<std::pair<std::string, std::string>>{
+             {"--size 10x10", "--size"},
+             {"--size 800", "--size"},
+             {"--target-fps 100", "--target-fps"},
+             {"--target-fps abc", "--target-fps"},
+             {"--epsilon 0", "--epsilon"},
+             {"--exposure nan", "--exposure"},
+             {"--overlays links,shadows", "'shadows'"},
+             {"--screenshot-after soon shot.png", "--screenshot-after"},
+             {"--screenshot-after 1", "--screenshot-after"},
+             {"--quit-after", "--quit-after"},
+             {"--headless-stress 0", "--headless-stress"},
+             {"--print-gizmo=1", "print-gizmo"},
+             {"--frobnicate", "--frobnicate"},
+             {"a.gltf b.gltf", "b.gltf"},
+         }) {
+        const ProcessResult r = run("env -u DISPLAY timeout 20 " + shellQuote(kViewer) + " " + args);
+        EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << "\n" << r.output;
+        EXPECT_EQ(r.output.rfind("radiosity-viewer: ", 0), 0u) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find(named), std::string::npos) << args << "\n" << r.output;
+    }
 }
 
 }  // namespace
