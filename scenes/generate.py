@@ -919,6 +919,26 @@ def dark_room():
     return sb
 
 
+def furnished_room():
+    """A closed room lit by one ceiling panel, with one set of the office furniture: the
+    scene for the Cycles reference (bench/cycles). Small enough to path-trace and to solve
+    quickly, closed so that no light escapes."""
+    sb = SceneBuilder('furnished-room')
+    mats = office_materials(sb)
+    rng = Rng(612)
+    room(sb, '', (0.0, 0.0, 0.0), (6.0, 3.0, 5.0), FURNISHED_ROOM_TILE, (mats['wall'], mats['floor'], mats['ceiling']),
+         lights=[(1.4, 2.6, 1.3, 1.9)], light_mat=mats['light'])
+    add_desk(sb, 'desk', 1.6, 0.46, 0.0, mats)
+    add_chair(sb, 'chair', 1.7, 1.4, math.pi + 0.25, mats, dynamic=True)
+    add_cabinet(sb, 'filing-cabinet', 3.3, 0.32, 0.0, mats)
+    add_bookcase(sb, 'bookcase', 0.19, 2.6, 0.5 * math.pi, mats, rng)
+    sb.set_camera((5.6, 1.6, 4.6), (1.9, 1.15, 1.0), math.radians(50.0), 4.0 / 3.0)
+    return sb
+
+
+FURNISHED_ROOM_TILE = 0.75
+
+
 # ---------------------------------------------------------------------------
 # Checking written files
 
@@ -1113,7 +1133,8 @@ def check_scene(sb, path, expected_bytes):
 
 # ---------------------------------------------------------------------------
 
-SCENES = [('cornell-box', cornell), ('office', office), ('two-offices', two_offices), ('dark-room', dark_room)]
+SCENES = [('cornell-box', cornell), ('office', office), ('two-offices', two_offices), ('dark-room', dark_room),
+          ('furnished-room', furnished_room)]
 
 
 def main(argv=None):
@@ -1136,7 +1157,7 @@ def main(argv=None):
             with open(path, 'wb') as f:
                 f.write(data)
         dyn = [o.name for o in sb.objects if o.dynamic]
-        print('%-14s %6d polygons  %8d bytes  lights %d  dynamic %s' % (
+        print('%-20s %6d polygons  %8d bytes  lights %d  dynamic %s' % (
             name + '.gltf', sb.polygon_count(), len(data),
             sum(1 for o in sb.objects if any(sb.materials[m][1] for m, _ in o.parts)), ','.join(dyn)))
         if args.check:

@@ -1,0 +1,143 @@
+// Accuracy against ground truth: radiosity-cli's solution, rendered through the
+// scene camera, against a Blender Cycles path-traced reference of the same scene
+// with the same conventions (bench/cycles/README.md). Issue 12, "Light that is
+// right": the Cornell box within 5% block RMS, the furnished room within 7%.
+//
+// The references are bench/references/NAME.pfm (linear B per pixel),
+// NAME-lights.pfm (pixels that see a light) and NAME.json (how they were made,
+// with a checksum of the scene file). Re-render them whenever a scene changes:
+// CyclesReference.MatchesTheSceneFiles fails until then.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "image/Image.h"
+#include "support/Cli.h"
+#include "support/ImageCompare.h"
+#include "support/TempDir.h"
+#include "support/TestScenes.h"
+
+namespace rad {
+namespace {
+
+using test::runCli;
+using test::shellQuote;
+
+struct ReferenceCase {
+    std::string name;  // scenes/NAME.gltf, bench/references/NAME.*
+    int width;
+    int height;
+    double targetBlockRms;
+};
+
+const ReferenceCase kCornellBox{"cornell-box", 128, 128, 0.05};
+const ReferenceCase kFurnishedRoom{"furnished-room", 128, 96, 0.07};
+
+std::string scenePath(const ReferenceCase& c) { return test::sourcePath("scenes/" + c.name + ".gltf"); }
+std::string referencePath(const ReferenceCase& c, const std::string& suffix) {
+    return test::sourcePath("bench/references/" + c.name + suffix);
+}
+std::string sizeArgument(const ReferenceCase& c) {
+    return std::to_string(c.width) + "x" + std::to_string(c.height);
+}
+
+// 64-bit FNV-1a, as bench/cycles/render_reference.py records it.
+std::string fnv1a64(const std::string& bytes) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (unsigned char b : bytes) h = (h ^ b) * 0x100000001b3ull;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return hex;
+}
+
+// Pixels where our material preview shows an emitter. The preview draws
+// reflectance (< 1) plus emission per polygon, and every light in these scenes
+// emits well over 1 in some channel, so "> 1" separates lights from the rest.
+std::vector<bool> ourLightPixels(const Image& preview) {
+    std::vector<bool> light(static_cast<std::size_t>(preview.width) * preview.height);
+    for (int y = 0; y < preview.height; ++y)
+        for (int x = 0; x < preview.width; ++x) {
+            const float* p = preview.pixel(x, y);
+            light[static_cast<std::size_t>(y) * preview.width + x] = p[0] > 1.0f || p[1] > 1.0f || p[2] > 1.0f;
+        }
+    return light;
+}
+
+void expectReferenceMatchesScene(const ReferenceCase& c) {
+    SCOPED_TRACE(c.name);
+    const std::string json = test::readFile(referencePath(c, ".json"));
+    ASSERT_FALSE(json.empty()) << referencePath(c, ".json") << " is missing";
+    const std::string hash = fnv1a64(test::readFile(scenePath(c)));
+    EXPECT_NE(json.find("\"scene_fnv1a64\": \"" + hash + "\""), std::string::npos)
+        << scenePath(c) << " changed since its reference was rendered (FNV-1a " << hash
+        << "); re-render it as bench/cycles/README.md says";
+    const Image reference = readPfm(referencePath(c, ".pfm"));
+    const Image lights = readPfm(referencePath(c, "-lights.pfm"));
+    EXPECT_EQ(reference.width, c.width);
+    EXPECT_EQ(reference.height, c.height);
+    EXPECT_EQ(lights.width, c.width);
+    EXPECT_EQ(lights.height, c.height);
+}
+
+// The camera check: our rasterised lights must cover exactly the pixels whose
+// centres see a light in Cycles. A wrong field of view, aspect, orientation
+// or a half-pixel shift moves whole edges; allow two pixels for centres that
+// lie on an edge to within rounding.
+void expectCameraLinesUp(const ReferenceCase& c) {
+    SCOPED_TRACE(c.name);
+    const test::TempDir dir;
+    const std::string preview = (dir / "preview.pfm").string();
+    const auto r = runCli("render " + shellQuote(scenePath(c)) + " --image " + shellQuote(preview) + " --size " +
+                          sizeArgument(c));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::vector<bool> ours = ourLightPixels(readPfm(preview));
+    const Image mask = readPfm(referencePath(c, "-lights.pfm"));
+    ASSERT_EQ(ours.size(), static_cast<std::size_t>(mask.width) * mask.height);
+    int theirs = 0, mismatched = 0;
+    std::string where;  // the first few pixels that differ
+    for (int y = 0; y < mask.height; ++y)
+        for (int x = 0; x < mask.width; ++x) {
+            const bool cycles = mask.pixel(x, y)[0] > 0.0f;
+            theirs += cycles;
+            if (cycles == ours[static_cast<std::size_t>(y) * mask.width + x]) continue;
+            if (++mismatched <= 10)
+                where += " (" + std::to_string(x) + "," + std::to_string(y) + (cycles ? ": Cycles only)" : ": ours only)");
+        }
+    EXPECT_GT(theirs, 50) << "the reference should show its light";
+    EXPECT_LE(mismatched, 2) << "light pixels that differ:" << where;
+}
+
+// Solves with the default settings, renders through the scene camera and
+// compares with the reference. Prints the figures whether or not they pass.
+void expectWithinTarget(const ReferenceCase& c) {
+    SCOPED_TRACE(c.name);
+    const test::TempDir dir;
+    const std::string image = (dir / "solved.pfm").string();
+    const auto r = runCli("solve " + shellQuote(scenePath(c)) + " --image " + shellQuote(image) + " --size " +
+                          sizeArgument(c));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const test::BlockComparison m =
+        test::compareBlocks(readPfm(image), readPfm(referencePath(c, ".pfm")), readPfm(referencePath(c, "-lights.pfm")));
+    std::printf("[ accuracy ] %s: block RMS %.4f (target %.2f), mean ratio %.4f, %d blocks, %zu pixels\n",
+                c.name.c_str(), m.blockRms, c.targetBlockRms, m.meanRatio, m.blocks, m.pixels);
+    ::testing::Test::RecordProperty("block_rms", std::to_string(m.blockRms));
+    ::testing::Test::RecordProperty("mean_ratio", std::to_string(m.meanRatio));
+    EXPECT_LE(m.blockRms, c.targetBlockRms) << "mean ratio (ours / Cycles) " << m.meanRatio;
+}
+
+TEST(CyclesReference, MatchesTheSceneFiles) {
+    expectReferenceMatchesScene(kCornellBox);
+    expectReferenceMatchesScene(kFurnishedRoom);
+}
+
+TEST(CyclesReference, CornellBoxCameraLinesUp) { expectCameraLinesUp(kCornellBox); }
+TEST(CyclesReference, FurnishedRoomCameraLinesUp) { expectCameraLinesUp(kFurnishedRoom); }
+
+TEST(CyclesAccuracy, CornellBoxWithinFivePercent) { expectWithinTarget(kCornellBox); }
+TEST(CyclesAccuracy, FurnishedRoomWithinSevenPercent) { expectWithinTarget(kFurnishedRoom); }
+
+}  // namespace
+}  // namespace rad
