@@ -74,15 +74,14 @@ void renderToFile(const Scene& scene, const MeshSnapshot& mesh, const ImageReque
         VulkanContext context;  // validation follows RADIOSITY_VALIDATION
         validationMessages = context.validationMessageCounter();
         OffscreenRenderer renderer(context);
-        image = renderer.render(mesh, view.viewProjectionF(), size.width, size.height);
+        // Exposure is the shader's (a push constant), for PNG only: PFM holds B.
+        MeshDrawOptions options;
+        options.exposure = lowerExtension(request.path) == ".png" ? request.exposure : 0.0;
+        image = renderer.render(mesh, view.viewProjectionF(), size.width, size.height, options);
     }
     if (const std::size_t messages = *validationMessages; messages > 0)
         throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(messages) +
                                  " message(s); " + request.path + " not written");
-    if (lowerExtension(request.path) == ".png" && request.exposure != 0.0) {
-        const auto scale = static_cast<float>(std::exp2(request.exposure));
-        for (float& v : image.rgb) v *= scale;
-    }
     writeImage(image, request.path);
 }
 

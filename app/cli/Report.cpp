@@ -1,9 +1,8 @@
 #include "cli/Report.h"
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <stdexcept>
+
+#include "image/AtomicFile.h"
 
 namespace rad::cli {
 namespace {
@@ -23,17 +22,6 @@ void writeReport(const std::string& path, Report report) {
     // A scene path or object name need not be UTF-8: invalid bytes become
     // U+FFFD rather than failing the whole report.
     writeFileAtomically(path, report.dump(2, ' ', false, Report::error_handler_t::replace) + "\n");
-}
-
-void writeFileAtomically(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        if (!out) throw std::runtime_error(path + ": cannot open for writing");
-        out << text;
-        if (!out) throw std::runtime_error(path + ": write failed");
-    }
-    std::filesystem::rename(tmp, path);
 }
 
 }  // namespace rad::cli

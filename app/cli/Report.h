@@ -23,8 +23,4 @@ Report valueOrNull(const std::optional<T>& v) {
 // infinities) are written as null; that policy lives in this function alone.
 void writeReport(const std::string& path, Report report);
 
-// Writes text to path atomically: a temporary beside it, then a rename.
-// Callers check beforehand that they may replace an existing file (--force).
-void writeFileAtomically(const std::string& path, const std::string& text);
-
 }  // namespace rad::cli

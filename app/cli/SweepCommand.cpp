@@ -16,6 +16,7 @@
 #include "cli/MotionOptions.h"
 #include "cli/RenderOutput.h"
 #include "cli/Report.h"
+#include "image/AtomicFile.h"
 #include "plot/Plot.h"
 #include "radiosity/Gltf.h"
 

@@ -16,6 +16,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "image/AtomicFile.h"
 #include "image/Image.h"
 
 namespace rad::plot {
@@ -699,30 +700,6 @@ std::string renderSvg(const std::vector<Chart>& charts, int width, int height,
     return withTextEquivalent(std::move(svg), charts);
 }
 
-// A temporary beside the target, then renamed over it, so readers never see
-// half a file.
-void writeAtomically(const std::string& path, const std::string& bytes) {
-    const std::string tmp = path + ".tmp";
-    std::error_code ignored;
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        if (!out) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) {
-            const int error = errno;
-            std::filesystem::remove(tmp, ignored);
-            throw std::runtime_error(path + ": cannot write: " + std::strerror(error));
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ignored);
-        throw std::runtime_error(path + ": cannot write: " + ec.message());
-    }
-}
-
 }  // namespace
 
 void writeCharts(const std::vector<Chart>& charts, const std::string& pathWithoutExtension,
@@ -739,8 +716,8 @@ void writeCharts(const std::vector<Chart>& charts, const std::string& pathWithou
     // Both drawn before either is written, for the same reason.
     const std::string pngBytes = renderPng(charts, width, height, png);
     const std::string svgBytes = renderSvg(charts, width, height, svg);
-    writeAtomically(png, pngBytes);
-    writeAtomically(svg, svgBytes);
+    writeFileAtomically(png, pngBytes);
+    writeFileAtomically(svg, svgBytes);
 }
 
 std::optional<std::array<double, 2>> dataToPixel(const Chart& chart, double x, double y, int width,
