@@ -120,7 +120,13 @@ const SolveStats& Engine::solve(const Progress& progress) {
     s.solver.pushPull();
     for (int round = 1; round <= s.settings.maxRefineRounds; ++round) {
         auto t = std::chrono::steady_clock::now();
-        for (ElementId e = 0; e < s.hierarchy.size(); ++e) s.hierarchy[e].oracle = luminance(s.hierarchy[e].radiosity);
+        for (ElementId e = 0; e < s.hierarchy.size(); ++e) {
+            HElement& el = s.hierarchy[e];
+            // A cluster sends each way what its facets facing that way send:
+            // judged by the brightest, so that a lamp in a dark cluster counts.
+            el.oracle = el.shape != kNone ? s.hierarchy.shape(e).peakLuminance(s.hierarchy.shape(e).power)
+                                          : luminance(el.radiosity);
+        }
         const std::size_t refined = s.refiner.refineAll();
         st.refineSeconds += secondsSince(t);
         st.refineRounds = round;
@@ -143,7 +149,9 @@ const SolveStats& Engine::solve(const Progress& progress) {
             st.message = m.str();
             break;
         }
-        if (refined == 0) break;
+        // A round that refines almost nothing changes the radiosity too little
+        // for another round to find more worth refining.
+        if (refined == 0 || refined * 1000 < s.links.liveCount()) break;
         if (round == s.settings.maxRefineRounds) st.message = "stopped refining after the round limit";
     }
     // Refinement made under an earlier round's radiosity that the final one
@@ -229,7 +237,6 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
     const ElementId cluster = s.hierarchy.objectCluster(*s.dynamic);
     s.hierarchy.updateGeometry(cluster);
     s.hierarchy.refreshAncestors(cluster);
-    s.refiner.refreshClusterSamples(cluster);
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
     s.updater.setObstacles(motionObstacles(s.scene, *s.dynamic, before, oldToNew));
     const double moveSeconds = secondsSince(start);

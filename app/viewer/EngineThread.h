@@ -77,7 +77,7 @@ struct SetTargetFps {
     double fps = 30.0;
 };
 struct SetEpsilon {
-    double epsilon = 2e-4;
+    double epsilon = EngineSettings{}.epsilon;
 };
 struct SetOverlays {
     SnapshotOverlays overlays;

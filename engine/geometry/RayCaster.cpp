@@ -49,36 +49,63 @@ double maxAbs(const glm::dvec3& p) {
     return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
 }
 
-// A segment a -> a + d, and the window of its parameter in which a hit blocks it.
-struct Segment {
+// A segment a -> a + d in double precision: the window of its parameter in
+// which any hit blocks it, the tolerance for coincidence at its ends, and the
+// polygons its ends lie on.
+struct PlacedSegment {
     glm::dvec3 a;
     glm::dvec3 d;
     double tMin, tMax;
+    double tolerance;
+    std::uint32_t fromPolygon, toPolygon;
 };
 
-// Embree finds candidate hits in float; each candidate of an occlusion query is then checked
-// here in double precision against the triangle's plane, so that hits at the segment's own end
-// points (which lie on surfaces) are rejected however grazing the segment is. An Embree 3
-// intersect context extended by the query's data (the documented way to pass per-ray data to a
-// filter function; the base must come first); a ray's id indexes its segment.
+// Embree finds candidate hits in float; each candidate of an occlusion query is then placed here
+// in double precision against the triangle's plane (RayCaster::blocked says what blocks). An
+// Embree 3 intersect context extended by the query's data (the documented way to pass per-ray
+// data to a filter function; the base must come first); a ray's id indexes its segment.
 struct SegmentContext {
     RTCIntersectContext base;
-    const std::vector<glm::dvec4>* planes;  // per triangle: unnormalised normal n, and n . v0
-    const Segment* segments;
+    const std::vector<glm::dvec4>* planes;         // per triangle: unnormalised normal n, and n . v0
+    const std::vector<std::uint32_t>* polygonOf;  // per triangle: the scene polygon
+    const PlacedSegment* segments;
 };
 
-void rejectHitsAtEnds(const RTCFilterFunctionNArguments* args) {
+// Whether polygon `other`, coincident with the end polygon `end` near the end
+// point p and met by the segment from the side its front faces (`facing`),
+// stands in front of it: the lower index wins, so of coincident surfaces
+// exactly one is seen.
+bool coincidentInFront(const glm::dvec4& plane, const glm::dvec3& p, double tolerance, bool facing,
+                       std::uint32_t other, std::uint32_t end) {
+    if (end == RayCaster::kNoPolygon || !facing || other > end) return false;
+    const glm::dvec3 n(plane);
+    return std::abs(glm::dot(n, p) - plane.w) <= tolerance * glm::length(n);
+}
+
+void filterHits(const RTCFilterFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const SegmentContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
-        const Segment& s = ctx->segments[RTCRayN_id(args->ray, args->N, i)];
-        const glm::dvec4& plane = (*ctx->planes)[RTCHitN_primID(args->hit, args->N, i)];
-        const glm::dvec3 n(plane);
-        const double denom = glm::dot(n, s.d);
-        // A segment in the triangle's plane (denom 0) is not blocked by it: such a segment
-        // joins two points of one surface and carries no energy anyway.
-        const double t = (plane.w - glm::dot(n, s.a)) / denom;
-        if (!(t > s.tMin && t < s.tMax)) args->valid[i] = 0;
+        const PlacedSegment& s = ctx->segments[RTCRayN_id(args->ray, args->N, i)];
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        const std::uint32_t polygon = (*ctx->polygonOf)[prim];
+        bool blocks = false;
+        if (polygon != s.fromPolygon && polygon != s.toPolygon) {
+            const glm::dvec4& plane = (*ctx->planes)[prim];
+            const glm::dvec3 n(plane);
+            const double nd = glm::dot(n, s.d);
+            // A segment in the triangle's plane (nd 0) is not blocked by it:
+            // such a segment joins two points of one surface and carries no
+            // energy anyway.
+            const double t = (plane.w - glm::dot(n, s.a)) / nd;
+            if (t > s.tMin && t < s.tMax)
+                blocks = true;
+            else if (t >= s.tMax)  // at the receiving end: it faces the segment's start
+                blocks = coincidentInFront(plane, s.a + s.d, s.tolerance, nd < 0.0, polygon, s.toPolygon);
+            else if (t <= s.tMin)  // at the sending end: it faces the way the segment leaves
+                blocks = coincidentInFront(plane, s.a, s.tolerance, nd > 0.0, polygon, s.fromPolygon);
+        }
+        if (!blocks) args->valid[i] = 0;
     }
 }
 
@@ -100,6 +127,7 @@ struct RayCaster::Impl {
     // precision filter works in world coordinates.
     glm::dvec3 origin{0.0};
     double scale = 1.0;
+    double size = 1.0;  // the frame's largest extent
     glm::vec3 toEmbree(const glm::dvec3& p) const { return glm::vec3((p - origin) * scale); }
 
     Impl() {
@@ -120,23 +148,28 @@ struct RayCaster::Impl {
     const LayerData& layer(Layer l) const { return layers[l == Layer::Static ? 0 : 1]; }
     LayerData& layer(Layer l) { return layers[l == Layer::Static ? 0 : 1]; }
 
-    // The segment a -> b with its end margins; false when its ends are closer than the noise
-    // (then nothing lies between them).
-    bool segment(const LayerData& l, const glm::dvec3& a, const glm::dvec3& b, Segment& s) const {
-        const glm::dvec3 d = b - a;
-        const double len = glm::length(d);
+    double tolerance(const LayerData& l, const glm::dvec3& a, const glm::dvec3& b) const {
         const double magnitude = std::max({l.magnitude, maxAbs(a), maxAbs(b)});
-        const double margin = std::max(endMarginOfLength * len, endMarginOfMagnitude * magnitude);
-        if (!(len > 2.0 * margin)) return false;
-        const double tMargin = margin / len;
-        s = Segment{a, d, tMargin, 1.0 - tMargin};
+        return std::max(coincidenceOfSize * size, coincidenceOfMagnitude * magnitude);
+    }
+
+    // The segment with its tolerance; false when its ends are closer than
+    // twice the tolerance (then nothing lies between them).
+    bool place(const LayerData& l, const Segment& in, PlacedSegment& s) const {
+        const glm::dvec3 d = in.to - in.from;
+        const double len = glm::length(d);
+        const double tol = tolerance(l, in.from, in.to);
+        if (!(len > 2.0 * tol)) return false;
+        s = PlacedSegment{in.from, d, tol / len, 1.0 - tol / len, tol, in.fromPolygon, in.toPolygon};
         return true;
     }
 
-    // Unnormalised direction: t in [0, 1] spans the segment. The float window is the whole
-    // segment; the filter applies the end margins in double.
-    void setRay(RTCRay16& ray, unsigned lane, const Segment& s) const {
-        const glm::vec3 org = toEmbree(s.a);
+    // Unnormalised direction: t in [0, 1] spans the segment. The float window
+    // reaches a tolerance and a half beyond both ends, so that surfaces
+    // coincident with an end are met; the filter decides in double.
+    void setRay(RTCRay16& ray, unsigned lane, const PlacedSegment& s) const {
+        const double reach = 1.5 * s.tMin;
+        const glm::vec3 org = toEmbree(s.a - reach * s.d);
         const glm::vec3 dir(s.d * scale);
         ray.org_x[lane] = org.x;
         ray.org_y[lane] = org.y;
@@ -145,23 +178,22 @@ struct RayCaster::Impl {
         ray.dir_y[lane] = dir.y;
         ray.dir_z[lane] = dir.z;
         ray.tnear[lane] = 0.0f;
-        ray.tfar[lane] = 1.0f;
+        ray.tfar[lane] = static_cast<float>(1.0 + 2.0 * reach);
         ray.mask[lane] = std::numeric_limits<unsigned>::max();
         ray.time[lane] = 0.0f;
         ray.id[lane] = lane;  // the filter's index into the segments
         ray.flags[lane] = 0;
     }
 
-    // How many of the segments from[i] -> to[i] (at most 16) are blocked, traced as one packet:
-    // the segments of a link run between two small patches, so they travel the same BVH nodes.
-    std::size_t blockedCount(const LayerData& l, std::span<const glm::dvec3> from,
-                             std::span<const glm::dvec3> to) const {
-        std::array<Segment, 16> segments;
+    // The segments (at most 16) traced as one packet: the segments of a link
+    // run between two small patches, so they travel the same BVH nodes.
+    std::uint16_t blockedMask(const LayerData& l, std::span<const Segment> in) const {
+        std::array<PlacedSegment, kMaxSegments> segments;
         alignas(64) std::array<int, 16> valid{};
         RTCRay16 rays{};
         bool any = false;
-        for (unsigned i = 0; i < from.size(); ++i) {
-            if (!segment(l, from[i], to[i], segments[i])) continue;
+        for (unsigned i = 0; i < in.size(); ++i) {
+            if (!place(l, in[i], segments[i])) continue;
             setRay(rays, i, segments[i]);
             valid[i] = -1;
             any = true;
@@ -171,12 +203,14 @@ struct RayCaster::Impl {
         rtcInitIntersectContext(&context.base);
         context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         context.planes = &l.planes;
+        context.polygonOf = &l.polygonOfTri;
         context.segments = segments.data();
         rtcOccluded16(valid.data(), l.scene.get(), &context.base, &rays);
-        std::size_t blocked = 0;
+        std::uint16_t mask = 0;
         // Embree marks an occluded ray by setting tfar to -inf.
-        for (unsigned i = 0; i < from.size(); ++i) blocked += valid[i] == -1 && rays.tfar[i] < 0.0f;
-        return blocked;
+        for (unsigned i = 0; i < in.size(); ++i)
+            if (valid[i] == -1 && rays.tfar[i] < 0.0f) mask |= std::uint16_t(1u << i);
+        return mask;
     }
 };
 
@@ -191,6 +225,7 @@ void RayCaster::setFrame(const Aabb& bounds) {
     const double size = std::max({e.x, e.y, e.z});
     impl_->origin = bounds.center();
     impl_->scale = size > 0.0 ? 1.0 / size : 1.0;
+    impl_->size = size > 0.0 ? size : 1.0;
 }
 
 void RayCaster::setLayer(Layer layer, const Scene& scene,
@@ -248,7 +283,7 @@ void RayCaster::setLayer(Layer layer, const Scene& scene,
             vb[3 * i + 2] = vertices[i].z;
         }
         std::copy(indices.begin(), indices.end(), ib);
-        rtcSetGeometryOccludedFilterFunction(geometry, rejectHitsAtEnds);
+        rtcSetGeometryOccludedFilterFunction(geometry, filterHits);
         rtcCommitGeometry(geometry);
         rtcAttachGeometry(fresh.scene.get(), geometry);
         rtcReleaseGeometry(geometry);  // the scene holds it now
@@ -258,19 +293,15 @@ void RayCaster::setLayer(Layer layer, const Scene& scene,
     impl_->layer(layer) = std::move(fresh);
 }
 
-double RayCaster::unoccludedFraction(Layer layer, std::span<const glm::dvec3> from,
-                                     std::span<const glm::dvec3> to) const {
-    const std::size_t n = std::min(from.size(), to.size());
-    if (n == 0) return 1.0;
+std::uint16_t RayCaster::blocked(Layer layer, std::span<const Segment> segments) const {
+    if (segments.size() > kMaxSegments)
+        throw std::invalid_argument("RayCaster::blocked: more than 16 segments in one query");
     const Impl::LayerData& l = impl_->layer(layer);
-    if (!l.scene) return 1.0;
-    std::size_t blocked = 0;
-    for (std::size_t i = 0; i < n; i += 16) {
-        const std::size_t m = std::min<std::size_t>(16, n - i);
-        blocked += impl_->blockedCount(l, from.subspan(i, m), to.subspan(i, m));
-    }
-    return static_cast<double>(n - blocked) / static_cast<double>(n);
+    if (!l.scene || segments.empty()) return 0;
+    return impl_->blockedMask(l, segments);
 }
+
+double RayCaster::coincidenceTolerance() const { return coincidenceOfSize * impl_->size; }
 
 std::optional<RayCaster::Hit> RayCaster::intersect(const glm::dvec3& origin,
                                                    const glm::dvec3& direction, double tmax) const {

@@ -31,12 +31,32 @@ class RayCaster {
     // layers, it makes the float ray casting independent of the scene's scale.
     void setFrame(const Aabb& bounds);
 
-    // Fraction of the segments from[i] -> to[i] that are NOT blocked in the layer (1 for an empty
-    // set). Hits within a small margin of either end are ignored (the segment ends lie on
-    // surfaces); Embree finds candidates in float, each is then placed on the segment in double
-    // and kept only if it is farther than the margin from both ends. Thread-safe.
-    double unoccludedFraction(Layer layer, std::span<const glm::dvec3> from,
-                              std::span<const glm::dvec3> to) const;
+    // A visibility ray: a segment between two points on surfaces, and the
+    // input polygons they lie on (kNoPolygon when not on one).
+    struct Segment {
+        glm::dvec3 from{0.0}, to{0.0};
+        std::uint32_t fromPolygon = kNoPolygon, toPolygon = kNoPolygon;
+    };
+    static constexpr std::uint32_t kNoPolygon = 0xffffffffu;
+    static constexpr std::size_t kMaxSegments = 16;  // one Embree packet
+
+    // Which of the segments (at most kMaxSegments) the layer blocks: bit i set
+    // when segment i is blocked. Thread-safe.
+    //
+    // A polygon blocks a segment when the segment crosses it strictly between
+    // its ends, farther than the coincidence tolerance (coincidenceTolerance())
+    // from both. The polygons the ends lie on never block it. Near an end, a
+    // polygon coincident with the end's polygon (its plane within the
+    // tolerance of the end point) and facing the same way stands in front of
+    // it exactly when its index is lower: of a stack of coincident surfaces
+    // (duplicates, overlapping coplanar slabs) one is seen, so a receiver
+    // sees their union and not their sum. Embree finds candidates in float;
+    // each is placed on the segment in double precision.
+    std::uint16_t blocked(Layer layer, std::span<const Segment> segments) const;
+
+    // Distance under which two surfaces count as coincident: a fixed fraction
+    // of the frame's size, so that it means the same at every scale.
+    double coincidenceTolerance() const;
 
     // Nearest hit along a ray in either layer (for picking): polygon id and the ray parameter t
     // (hit = origin + t * direction, so a distance when direction is unit), with 0 <= t <= tmax.
@@ -47,12 +67,11 @@ class RayCaster {
     std::optional<Hit> intersect(const glm::dvec3& origin, const glm::dvec3& direction,
                                  double tmax) const;
 
-    // End margins (see unoccludedFraction), applied in double precision to Embree's candidate
-    // hits: a fraction of the segment length (tolerates sample points slightly off slightly
-    // non-planar polygons), and a fraction of the largest absolute coordinate of the layer and
-    // the segment (double rounding of the end points; matters only for very short segments).
-    static constexpr double endMarginOfLength = 1e-5;
-    static constexpr double endMarginOfMagnitude = 1e-9;
+    // The coincidence tolerance as a fraction of the frame's largest extent,
+    // and a floor of it relative to the largest absolute coordinate (double
+    // rounding of the end points far from the origin).
+    static constexpr double coincidenceOfSize = 1e-6;
+    static constexpr double coincidenceOfMagnitude = 1e-9;
 
   private:
     struct Impl;

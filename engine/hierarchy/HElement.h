@@ -42,8 +42,23 @@ struct HElement {
     glm::dvec3 reflectance{0.0};
     glm::dvec3 emission{0.0};
 
+    // Clusters: their orientation (facets, sample points, facet powers), an
+    // index into Hierarchy's shapes; kNone for surfaces.
+    std::uint32_t shape = kNone;
+
     // Solution state (double precision: the in-place gather adds differences).
-    glm::dvec3 irradiance{0.0};  // gathered on this element's own active links
+    // Surfaces: the irradiance gathered on their own active links, and the sum
+    // of those links' form factors (what the energy guard bounds). A cluster's
+    // links arrive from directions; what each member gets is found when the
+    // cluster is pushed (solve/ClusterTransfer.h), so it stores neither.
+    glm::dvec3 irradiance{0.0};
+    double formFactorSum = 0.0;
+    // Surfaces: how much of the element's view its own links and those below
+    // it cover, on average over its area (formFactorSum plus the area-mean
+    // coverage of its children). The push of irradiance to children uses it
+    // (Solver: what coarse links bring goes to the part of each child's view
+    // that finer links leave uncovered).
+    double coverage = 0.0;
     glm::dvec3 radiosity{0.0};   // B; for clusters the area-weighted mean below
     // The B that the receivers of this element's links currently hold in
     // their irradiance: the in-place gather adds F times the difference.
@@ -54,6 +69,12 @@ struct HElement {
     double oracle = 0.0;
     bool changed = false;  // on the path to a modified element (sec. 4.1, Fig. 7)
     bool dirty = false;    // own irradiance changed: the whole subtree is pushed again
+    // Its links changed: its irradiance is summed again from them before the
+    // next push (Refiner::takeDirty), rather than adjusted link by link.
+    bool stale = false;
+    // Clusters: its links or its geometry changed since its arrival table
+    // (solve/ClusterTransfer.h) was built.
+    bool arrivalsStale = true;
 
     // Links arriving here (this element is the receiver).
     std::vector<LinkId> links;   // active

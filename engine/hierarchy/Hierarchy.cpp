@@ -9,14 +9,6 @@ namespace {
 // A cluster holds at most this many children before it is split in two.
 constexpr std::size_t kClusterFanout = 4;
 
-glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv) {
-    if (p.vertexCount == 3) return p.vertices[0] + uv.x * (p.vertices[1] - p.vertices[0]) + uv.y * (p.vertices[2] - p.vertices[0]);
-    // Bilinear over the quad; a planar convex quad maps sub-squares to planar convex quads.
-    const glm::dvec3 a = glm::mix(p.vertices[0], p.vertices[1], uv.x);
-    const glm::dvec3 b = glm::mix(p.vertices[3], p.vertices[2], uv.x);
-    return glm::mix(a, b, uv.y);
-}
-
 // Area-weighted centroid of a convex patch (fan from its first vertex).
 glm::dvec3 patchCentroid(const PatchGeometry& patch) {
     glm::dvec3 c(0.0);
@@ -55,8 +47,36 @@ void splitMedian(std::vector<std::uint32_t>& items, CenterOf centerOf, std::vect
 
 }  // namespace
 
+glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv) {
+    if (p.vertexCount == 3) return p.vertices[0] + uv.x * (p.vertices[1] - p.vertices[0]) + uv.y * (p.vertices[2] - p.vertices[0]);
+    // Bilinear over the quad; a planar convex quad maps sub-squares to planar convex quads.
+    const glm::dvec3 a = glm::mix(p.vertices[0], p.vertices[1], uv.x);
+    const glm::dvec3 b = glm::mix(p.vertices[3], p.vertices[2], uv.x);
+    return glm::mix(a, b, uv.y);
+}
+
+const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount) {
+    static const std::array<glm::dvec2, 16> quad = [] {
+        std::array<glm::dvec2, 16> uv{};
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) uv[4 * j + i] = glm::dvec2((i + 0.5) / 4.0, (j + 0.5) / 4.0);
+        return uv;
+    }();
+    static const std::array<glm::dvec2, 16> triangle = [] {
+        std::array<glm::dvec2, 16> uv{};
+        int n = 0;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; i + j < 4; ++j) {
+                uv[n++] = glm::dvec2((i + 1.0 / 3.0) / 4.0, (j + 1.0 / 3.0) / 4.0);  // upward
+                if (i + j < 3) uv[n++] = glm::dvec2((i + 2.0 / 3.0) / 4.0, (j + 2.0 / 3.0) / 4.0);  // downward
+            }
+        return uv;
+    }();
+    return vertexCount == 4 ? quad : triangle;
+}
+
 Hierarchy::Hierarchy(const Scene& scene, double minArea)
-    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), objectClusters_(scene.objects.size(), kNone), minArea_(minArea) {
+    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), polygonKeys_(scene.polygons.size(), 0), objectClusters_(scene.objects.size(), kNone), minArea_(minArea) {
     std::vector<std::uint32_t> dynamicObjects, staticObjects;
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
         if (scene.objects[o].polygonCount == 0) continue;
@@ -77,8 +97,7 @@ Hierarchy::Hierarchy(const Scene& scene, double minArea)
         if (dynamicObjects.empty()) {
             top = elements_[s].children;
             for (ElementId c : top) elements_[c].parent = root_;
-            elements_[s] = HElement{};
-            free_.push_back(s);
+            release(s);
         } else {
             top.push_back(s);
         }
@@ -87,9 +106,37 @@ Hierarchy::Hierarchy(const Scene& scene, double minArea)
     for (ElementId c : top) elements_[c].parent = root_;
     finishCluster(root_);
     assignRanges(root_, 0, false);
+    orderMembers();
+}
+
+void Hierarchy::orderMembers() {
+    inOrder_.clear();
+    for (std::uint32_t p = 0; p < polygonElements_.size(); ++p)
+        if (polygonElements_[p] != kNone) inOrder_.push_back(p);
+    std::sort(inOrder_.begin(), inOrder_.end(), [&](std::uint32_t a, std::uint32_t b) { return polygonKeys_[a] < polygonKeys_[b]; });
+    ordinal_.assign(polygonElements_.size(), 0);
+    for (std::uint32_t i = 0; i < inOrder_.size(); ++i) ordinal_[inOrder_[i]] = i;
+}
+
+std::pair<std::uint32_t, std::uint32_t> Hierarchy::memberSpan(ElementId cluster) const {
+    const IndexRange& r = elements_[cluster].range;
+    const auto key = [&](std::uint32_t p) { return polygonKeys_[p]; };
+    const auto lo = std::lower_bound(inOrder_.begin(), inOrder_.end(), r.first, [&](std::uint32_t p, std::uint64_t k) { return key(p) < k; });
+    const auto hi = std::upper_bound(lo, inOrder_.end(), r.last, [&](std::uint64_t k, std::uint32_t p) { return k < key(p); });
+    return {static_cast<std::uint32_t>(lo - inOrder_.begin()), static_cast<std::uint32_t>(hi - lo)};
 }
 
 ElementId Hierarchy::add(HElement e) {
+    if (e.kind == ElementKind::Cluster) {
+        if (!freeShapes_.empty()) {
+            e.shape = freeShapes_.back();
+            freeShapes_.pop_back();
+            shapes_[e.shape] = ClusterShape{};
+        } else {
+            e.shape = static_cast<std::uint32_t>(shapes_.size());
+            shapes_.emplace_back();
+        }
+    }
     if (!free_.empty()) {
         const ElementId id = free_.back();
         free_.pop_back();
@@ -155,6 +202,12 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
     return id;
 }
 
+void Hierarchy::release(ElementId id) {
+    if (elements_[id].shape != kNone) freeShapes_.push_back(elements_[id].shape);
+    elements_[id] = HElement{};
+    free_.push_back(id);
+}
+
 void Hierarchy::finishCluster(ElementId id) {
     HElement& c = elements_[id];
     c.box = Aabb{};
@@ -167,6 +220,77 @@ void Hierarchy::finishCluster(ElementId id) {
         weighted += child.area * child.center;
     }
     c.center = c.area > 0.0 ? weighted / c.area : c.box.center();
+
+    // The orientation: surfaces give their normal and 16 points on their
+    // input polygon; clusters their own shape.
+    std::vector<ClusterShape::Facet> surfaceFacets;
+    std::vector<std::array<ClusterShape::Sample, 16>> surfaceSamples;
+    surfaceFacets.reserve(c.children.size());
+    surfaceSamples.reserve(c.children.size());
+    std::vector<ShapePart> parts;
+    for (ElementId k : c.children) {
+        const HElement& child = elements_[k];
+        if (child.isSurface()) {
+            const Polygon& p = scene_.polygons[child.polygon];
+            surfaceFacets.push_back({child.normal, child.area});
+            auto& samples = surfaceSamples.emplace_back();
+            const auto& uv = polygonSampleParams(p.vertexCount);
+            for (int i = 0; i < 16; ++i) samples[i] = {polygonPoint(p, uv[i]), child.normal, child.area / 16.0, child.polygon};
+            parts.push_back({std::span(&surfaceFacets.back(), 1), std::span(samples)});
+        } else {
+            const ClusterShape& cs = shapes_[child.shape];
+            parts.push_back({std::span(cs.facets.data(), cs.facetCount), std::span(cs.samples.data(), cs.sampleCount)});
+        }
+    }
+    c.arrivalsStale = true;  // its members moved, or its children changed
+    ClusterShape& shape = shapes_[c.shape];
+    const int facetsBefore = shape.facetCount;
+    const std::vector<std::uint8_t> mapBefore = shape.childFacet;
+    buildShape(parts, shape);
+    pullPower(id);
+    // What receivers hold stays valid while the facets stand for the same
+    // surfaces (a rigid move); otherwise it starts from the current powers.
+    if (shape.facetCount != facetsBefore || shape.childFacet != mapBefore) shape.gathered = shape.power;
+}
+
+namespace {
+
+double ownCoverage(const std::vector<HElement>& elements, const HElement& e) {
+    double below = 0.0, area = 0.0;
+    for (ElementId k : e.children) {
+        below += elements[k].area * elements[k].coverage;
+        area += elements[k].area;
+    }
+    return e.formFactorSum + (area > 0.0 ? below / area : 0.0);
+}
+
+}  // namespace
+
+void Hierarchy::refreshCoverage(ElementId id) {
+    for (ElementId e = id; e != kNone && elements_[e].isSurface(); e = elements_[e].depth == 0 ? kNone : elements_[e].parent)
+        elements_[e].coverage = ownCoverage(elements_, elements_[e]);
+}
+
+void Hierarchy::refreshQuadtreeCoverage(ElementId id) {
+    for (ElementId k : elements_[id].children) refreshQuadtreeCoverage(k);
+    elements_[id].coverage = ownCoverage(elements_, elements_[id]);
+}
+
+void Hierarchy::pullPower(ElementId id) {
+    const HElement& c = elements_[id];
+    ClusterShape& shape = shapes_[c.shape];
+    ClusterShape::Powers power{};
+    std::size_t entry = 0;
+    for (ElementId k : c.children) {
+        const HElement& child = elements_[k];
+        if (child.isSurface()) {
+            power[shape.childFacet[entry++]] += child.radiosity * child.area;
+        } else {
+            const ClusterShape& cs = shapes_[child.shape];
+            for (int f = 0; f < cs.facetCount; ++f) power[shape.childFacet[entry++]] += cs.power[f];
+        }
+    }
+    shape.power = power;
 }
 
 std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool renumber) {
@@ -178,6 +302,7 @@ std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool re
         // its existing quadtree must stay allowed.
         const std::uint64_t count = renumber ? e.range.size() : quadtreeIndexCount(e.area, minArea_, what);
         e.range = {first, checkedAdd(first, count - 1, what)};
+        polygonKeys_[e.polygon] = first;
         assignQuadtreeRanges(id);
         return elements_[id].range.last;
     }
@@ -223,16 +348,17 @@ void Hierarchy::attachToRoot(ElementId cluster) {
     const ElementId top = emptied.empty() ? cluster : emptied.back();
     const ElementId parent = elements_[top].parent;
     std::erase(elements_[parent].children, top);
-    for (ElementId e : emptied) {
-        elements_[e] = HElement{};
-        free_.push_back(e);
-    }
+    for (ElementId e : emptied) release(e);
     finishCluster(parent);
     refreshAncestors(parent);
     elements_[cluster].parent = root_;
     elements_[root_].children.push_back(cluster);
     finishCluster(root_);
     assignRanges(root_, 0, true);
+    orderMembers();
+    // Every cluster's members moved in the order: their arrival tables go.
+    for (HElement& e : elements_)
+        if (!e.isSurface()) e.arrivalsStale = true;
 }
 
 bool Hierarchy::canSubdivide(ElementId id) const {
@@ -349,6 +475,7 @@ void Hierarchy::refreshAncestors(ElementId id) {
 
 void Hierarchy::compact() {
     elements_.shrink_to_fit();
+    shapes_.shrink_to_fit();
     for (HElement& e : elements_) {
         e.links.shrink_to_fit();
         e.plinks.shrink_to_fit();
@@ -357,7 +484,9 @@ void Hierarchy::compact() {
 }
 
 std::size_t Hierarchy::memoryBytes() const {
-    std::size_t bytes = elements_.capacity() * sizeof(HElement) + free_.capacity() * sizeof(ElementId);
+    std::size_t bytes = elements_.capacity() * sizeof(HElement) + free_.capacity() * sizeof(ElementId) +
+                        shapes_.capacity() * sizeof(ClusterShape) + freeShapes_.capacity() * sizeof(std::uint32_t);
+    for (const ClusterShape& s : shapes_) bytes += s.childFacet.capacity();
     for (const HElement& e : elements_)
         bytes += (e.children.capacity() + e.links.capacity() + e.plinks.capacity() + e.outLinks.capacity()) *
                  sizeof(std::uint32_t);

@@ -5,12 +5,22 @@
 // move (paper sec. 3.3); polygons subdivided into quadtrees on demand during
 // refinement.
 
+#include <span>
 #include <vector>
 
+#include "hierarchy/ClusterShape.h"
 #include "hierarchy/HElement.h"
 #include "radiosity/Scene.h"
 
 namespace rad {
+
+// The point with parametric coordinates uv on a polygon (as in HElement::param:
+// bilinear on a quad, barycentric-like on a triangle).
+glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv);
+// 16 fixed parametric points spread evenly over a polygon: a 4 x 4 grid of
+// cell centres on quads, the centroids of the 16 sub-triangles of a 4-level
+// split on triangles.
+const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount);
 
 class Hierarchy {
 public:
@@ -27,6 +37,16 @@ public:
 
     // The surface element of each input polygon (quadtree root).
     ElementId polygonElement(std::uint32_t polygon) const { return polygonElements_[polygon]; }
+    std::size_t polygonCount() const { return polygonElements_.size(); }
+    // Per input polygon, the index of its element (range.first): which
+    // elements' ranges hold it.
+    std::span<const std::uint64_t> polygonKeys() const { return polygonKeys_; }
+    // The input polygons in hierarchy order (by key): the polygons below any
+    // cluster are a contiguous run of it. memberOrdinal(p) is p's position;
+    // memberSpan(c) the run below cluster c as (first, count).
+    std::uint32_t memberOrdinal(std::uint32_t polygon) const { return ordinal_[polygon]; }
+    std::pair<std::uint32_t, std::uint32_t> memberSpan(ElementId cluster) const;
+    std::uint32_t memberPolygon(std::uint32_t ordinal) const { return inOrder_[ordinal]; }
     // The cluster holding all of one object's polygons.
     ElementId objectCluster(std::uint32_t object) const { return objectClusters_[object]; }
     // The object clusters right under the root: those that can move without
@@ -52,6 +72,18 @@ public:
     // down to the leaf.
     std::vector<ElementId> pathTo(std::uint32_t polygon, const glm::dvec2& uv) const;
 
+    std::size_t shapeSlots() const { return shapes_.size(); }
+    // A cluster's orientation (see ClusterShape.h).
+    ClusterShape& shape(ElementId cluster) { return shapes_[elements_[cluster].shape]; }
+    const ClusterShape& shape(ElementId cluster) const { return shapes_[elements_[cluster].shape]; }
+    // Sums a cluster's facet powers from its children's radiosity (a pull).
+    void pullPower(ElementId cluster);
+    // Recomputes HElement::coverage of a surface element from its own
+    // formFactorSum and its children's coverage, then up its quadtree.
+    void refreshCoverage(ElementId surface);
+    // The same for a whole quadtree, bottom-up.
+    void refreshQuadtreeCoverage(ElementId surface);
+
     // Surfaces: whether children may be made (each keeps at least minArea).
     bool canSubdivide(ElementId id) const;
     // Makes the four children of a surface leaf (no-op if they exist).
@@ -76,6 +108,7 @@ public:
 
 private:
     ElementId add(HElement e);
+    void release(ElementId id);  // frees an element and its shape
     // A median-split tree of clusters over `items` (objects or polygons), at
     // most a few leaves per cluster; makeLeaf turns an item into an element.
     template <class CenterOf, class MakeLeaf>
@@ -92,7 +125,12 @@ private:
     const Scene& scene_;  // outlives the hierarchy; polygons move with the dynamic object
     std::vector<HElement> elements_;
     std::vector<ElementId> free_;
+    std::vector<ClusterShape> shapes_;
+    std::vector<std::uint32_t> freeShapes_;
     std::vector<ElementId> polygonElements_;
+    std::vector<std::uint64_t> polygonKeys_;
+    std::vector<std::uint32_t> inOrder_, ordinal_;  // polygons by key, and each one's position
+    void orderMembers();
     std::vector<ElementId> objectClusters_;
     std::vector<ElementId> movable_;
     ElementId root_ = kNone;

@@ -50,12 +50,12 @@ struct GaussRule {
     std::vector<double> nodes, weights;
 };
 
-// The rules for orders 1..64, computed once: the Newton iteration above costs
+// The rules for orders 1..kMaxOrder, computed once: the Newton iteration above costs
 // more than the form factor it serves.
 const GaussRule& gaussRule(int order) {
     static const std::vector<GaussRule> rules = [] {
-        std::vector<GaussRule> r(65);
-        for (int n = 1; n <= 64; ++n) gaussLegendre01(n, r[n].nodes, r[n].weights);
+        std::vector<GaussRule> r(kMaxOrder + 1);
+        for (int n = 1; n <= kMaxOrder; ++n) gaussLegendre01(n, r[n].nodes, r[n].weights);
         return r;
     }();
     return rules[order];
@@ -139,20 +139,20 @@ double pointToPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& nx,
     return pointToPolygon(x, nx, polygon, emitterNormal(polygon));
 }
 
-std::vector<SamplePoint> patchSamples(const PatchGeometry& patch, int order) {
-    order = std::clamp(order, 1, 64);
-    std::vector<SamplePoint> samples;
+SampleSet patchSamples(const PatchGeometry& patch, int order) {
+    order = std::clamp(order, 1, kMaxOrder);
+    SampleSet samples;
+    const auto add = [&](const glm::dvec3& p, double w) { samples.points[samples.count++] = {p, w}; };
     if (patch.n < 3 || patch.n > 4) {
         // Not a polygon: one point at the mean of the given vertices.
         const int count = std::clamp(patch.n, 1, 4);
         glm::dvec3 c(0.0);
         for (int i = 0; i < count; ++i) c += patch.v[i];
-        samples.push_back({c / double(count), 1.0});
+        add(c / double(count), 1.0);
         return samples;
     }
     const std::vector<double>& t = gaussRule(order).nodes;
     const std::vector<double>& w = gaussRule(order).weights;
-    samples.reserve(static_cast<std::size_t>(order) * order);
     double total = 0.0;
     const auto& v = patch.v;
     if (patch.n == 4) {
@@ -167,7 +167,7 @@ std::vector<SamplePoint> patchSamples(const PatchGeometry& patch, int order) {
                 const glm::dvec3 pu = (1 - s) * (v[1] - v[0]) + s * (v[2] - v[3]);
                 const glm::dvec3 ps = (1 - u) * (v[3] - v[0]) + u * (v[2] - v[1]);
                 const double wk = w[i] * w[j] * glm::length(glm::cross(pu, ps));
-                samples.push_back({p, wk});
+                add(p, wk);
                 total += wk;
             }
         }
@@ -178,16 +178,14 @@ std::vector<SamplePoint> patchSamples(const PatchGeometry& patch, int order) {
                 const double s = t[i], q = t[j];
                 const glm::dvec3 p = v[0] + s * (v[1] - v[0]) + s * q * (v[2] - v[1]);
                 const double wk = w[i] * w[j] * 2.0 * s;
-                samples.push_back({p, wk});
+                add(p, wk);
                 total += wk;
             }
         }
     }
-    if (total > 0.0 && std::isfinite(total)) {
-        for (SamplePoint& sp : samples) sp.w /= total;
-    } else {
-        for (SamplePoint& sp : samples) sp.w = 1.0 / double(samples.size());
-    }
+    for (std::size_t i = 0; i < samples.count; ++i)
+        samples.points[i].w = total > 0.0 && std::isfinite(total) ? samples.points[i].w / total
+                                                                  : 1.0 / double(samples.count);
     return samples;
 }
 

@@ -48,18 +48,29 @@ FormFactorEstimate estimateFormFactor(const PatchGeometry& receiver, const Patch
                                       int order = 4);
 
 // Quadrature points (and weights summing to 1) over a patch, used also for visibility rays.
-// order is clamped to [1, 64]; a quad gives order*order points, a triangle order*order points of
-// the collapsed square. A degenerate (zero-area) patch gives equal weights.
+// order is clamped to [1, kMaxOrder]; a quad gives order*order points, a triangle order*order
+// points of the collapsed square. A degenerate (zero-area) patch gives equal weights. Fixed
+// storage: links are computed by the million, and a heap allocation per call costs more than
+// the points.
 struct SamplePoint {
     glm::dvec3 p;
     double w;
 };
-std::vector<SamplePoint> patchSamples(const PatchGeometry& patch, int order);
+inline constexpr int kMaxOrder = 16;
+struct SampleSet {
+    std::array<SamplePoint, kMaxOrder * kMaxOrder> points;
+    std::size_t count = 0;
+    const SamplePoint* begin() const { return points.data(); }
+    const SamplePoint* end() const { return points.data() + count; }
+    std::size_t size() const { return count; }
+    const SamplePoint& operator[](std::size_t i) const { return points[i]; }
+};
+SampleSet patchSamples(const PatchGeometry& patch, int order);
 
-// Point approximation used for clusters (Sillion 1995, isotropic clusters): the form factor from
-// a receiver to a source seen as a small element of area aSource, with orientation factors:
-// F = aSource * gSource * gReceiver / (pi * d^2), where g = max(cos,0) for a surface and 1/4 for
-// a cluster (mean projected area of an isotropic set of one-sided surfaces).
+// Point approximation used for links with a cluster end (Sillion 1995): the form factor from a
+// receiver to a source seen as a small element of area aSource, with orientation factors:
+// F = aSource * gSource * gReceiver / (pi * d^2), where g is the cosine toward the other end
+// (clusters: the projected area over the area, ClusterShape).
 // The result is clamped to [0, 1] (a form factor cannot exceed one; the point approximation does
 // when d is small compared with the source); d^2 <= 0 gives 1 if the numerator is positive.
 double pointApproxFormFactor(double aSource, double gSource, double gReceiver,

@@ -3,6 +3,7 @@
 // receiver H-element, and p-links: refined links kept on their receiver as the
 // parents of the line-space hierarchy (paper sec. 3.1).
 
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -13,28 +14,39 @@ namespace rad {
 struct Link {
     ElementId source = kNone;
     ElementId receiver = kNone;
-    // F(receiver -> source) without occlusion, and the two parts of the
-    // visibility (sec. 3.4): by the static scene, computed once per link, and
-    // by the dynamic object, recomputed when it moves.
+    // The transfer without occlusion. A surface receiver: the form factor
+    // F(receiver -> source). A cluster receiver: the geometric kernel G of the
+    // point approximation (the source's projected area over pi d^2); each
+    // member surface takes G times its own cosine toward the source (see
+    // solve/ClusterTransfer.h).
     double unoccluded = 0.0;
     // How much the unoccluded point form factor varies across the receiver
     // (max - min at the quadrature points): where it is large, pushing the
     // mean down the receiver's subtree is a poor approximation.
     float spread = 0.0f;
-    float visStatic = 1.0f;
-    float visDynamic = 1.0f;
-    // The form factor the receiver's irradiance currently holds for this link;
-    // the in-place gather (eq. 1, 2) adds B_s times its change.
-    double gathered = 0.0;
+    // Two-part visibility (sec. 3.4), exact per ray: bit i is set when the
+    // static scene, or the dynamic objects, block visibility ray i. The
+    // visibility is the share of the rays blocked by neither, each ray
+    // weighted by the transfer between its two end points (near pairs carry
+    // more than far ones), so a ray blocked by both counts once. It is kept
+    // in `visible`, set whenever a mask changes (Refiner), because the
+    // weights need the geometry.
+    std::uint16_t blockedStatic = 0;
+    std::uint16_t blockedDynamic = 0;
+    std::uint8_t rays = 0;
+    float visible = 1.0f;
     bool passive = false;
     bool live = false;
-    // The visibility parts are out of date: a p-link that is refined whatever
+    // The visibility masks are out of date: a p-link that is refined whatever
     // its visibility needs none to be judged, and gets it if it is made
     // active again (Refiner::activate).
     bool visStale = false;
+    // The transfer the receiver's irradiance currently holds for this link;
+    // the in-place gather (eq. 1, 2) adds the source's B times its change.
+    double gathered = 0.0;
 
-    double formFactor() const { return unoccluded * double(visStatic) * double(visDynamic); }
-    double visibility() const { return double(visStatic) * double(visDynamic); }
+    double visibility() const { return visible; }
+    double formFactor() const { return unoccluded * visibility(); }
 };
 
 // All links and p-links, addressed by LinkId; freed slots are reused.

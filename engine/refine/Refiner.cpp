@@ -6,17 +6,13 @@
 
 #include <tbb/parallel_for.h>
 
-#include "geometry/RayCaster.h"
 #include "links/FormFactor.h"
+#include "solve/ClusterTransfer.h"
 
 namespace rad {
 namespace {
 
 double radius(const HElement& e) { return 0.5 * glm::length(e.box.extent()); }
-
-// Moves a ray end a little off its surface so that it does not start inside
-// a neighbouring polygon that meets this one at an edge.
-glm::dvec3 lift(const glm::dvec3& p, const glm::dvec3& normal, double size) { return p + 1e-4 * size * normal; }
 
 // Link lists are sets: removal swaps the last entry in (a light can hold
 // thousands of outgoing links; shifting them on every removal would not do).
@@ -29,42 +25,7 @@ void unorderedErase(std::vector<LinkId>& list, LinkId id) {
 }  // namespace
 
 Refiner::Refiner(Hierarchy& hierarchy, LinkStore& links, const RayCaster& rays, RefineSettings settings)
-    : h_(hierarchy), links_(links), rays_(rays), settings_(settings) {
-    clusterSamples_.resize(h_.size());
-    refreshClusterSamples(h_.root());
-}
-
-void Refiner::refreshClusterSamples(ElementId subtree) {
-    const HElement& c = h_[subtree];
-    if (c.isSurface()) return;
-    for (ElementId k : c.children) refreshClusterSamples(k);
-    refreshClusterSample(subtree);
-}
-
-void Refiner::refreshClusterSample(ElementId cluster) {
-    // The input polygons below this cluster, with their cumulative area.
-    std::vector<ElementId> surfaces;
-    std::vector<ElementId> stack{cluster};
-    while (!stack.empty()) {
-        const ElementId e = stack.back();
-        stack.pop_back();
-        if (h_[e].isSurface()) surfaces.push_back(e);
-        else for (ElementId k : h_[e].children) stack.push_back(k);
-    }
-    if (surfaces.empty()) return;
-    std::sort(surfaces.begin(), surfaces.end());
-    std::vector<double> cumulative;
-    double total = 0.0;
-    for (ElementId s : surfaces) cumulative.push_back(total += h_[s].area);
-    if (clusterSamples_.size() <= cluster) clusterSamples_.resize(h_.size());
-    std::array<glm::dvec3, 4>& out = clusterSamples_[cluster];
-    for (int k = 0; k < 4; ++k) {
-        const double target = (k + 0.5) / 4.0 * total;
-        const auto it = std::lower_bound(cumulative.begin(), cumulative.end(), target);
-        const HElement& s = h_[surfaces[std::min<std::size_t>(it - cumulative.begin(), surfaces.size() - 1)]];
-        out[k] = lift(s.center, s.normal, std::sqrt(s.area));
-    }
-}
+    : h_(hierarchy), links_(links), rays_(rays), settings_(settings) {}
 
 bool Refiner::touchesMovable(ElementId e) const {
     const IndexRange& r = h_[e].range;
@@ -75,18 +36,53 @@ bool Refiner::touchesMovable(ElementId e) const {
     return false;
 }
 
-Refiner::Points Refiner::samplePoints(ElementId id) const {
-    const HElement& e = h_[id];
-    Points points;
-    if (!e.isSurface()) {
-        for (const glm::dvec3& p : clusterSamples_[id]) points.p[points.n++] = p;
-        return points;
-    }
-    const int order = std::clamp(static_cast<int>(std::lround(std::sqrt(settings_.samplesPerElement))), 1, 4);
-    for (const SamplePoint& s : patchSamples(e.patch, order))
-        if (points.n < kMaxPoints) points.p[points.n++] = lift(s.p, e.normal, std::sqrt(e.area));
-    return points;
+std::size_t Refiner::segments(ElementId s, ElementId r, Segments& out, RayWeights& weights) const {
+    const int order = settings_.samplesPerElement >= 4 ? 2 : 1;
+    const SourcePoints ps = sourcePoints(h_, s, h_[r].center, order), pr = sourcePoints(h_, r, h_[s].center, order);
+    std::size_t n = 0;
+    double total = 0.0;
+    for (int i = 0; i < ps.n; ++i)
+        for (int j = 0; j < pr.n; ++j) {
+            out[n] = {ps.p[i], pr.p[j], ps.polygon[i], pr.polygon[j]};
+            // The point-to-point transfer the ray stands for: A_i A_j cos cos / r^2.
+            const glm::dvec3 d = pr.p[j] - ps.p[i];
+            const double r2 = glm::dot(d, d);
+            const double c = r2 > 0.0 ? std::max(0.0, glm::dot(ps.normal[i], d)) * std::max(0.0, -glm::dot(pr.normal[j], d)) : 0.0;
+            weights[n] = r2 > 0.0 ? ps.area[i] * pr.area[j] * c / (r2 * r2) : 0.0;
+            total += weights[n++];
+        }
+    // Facing nowhere (a pair judged by other points): the rays count alike.
+    if (!(total > 0.0) || !std::isfinite(total))
+        for (std::size_t i = 0; i < n; ++i) weights[i] = 1.0;
+    return n;
 }
+
+float Refiner::weightedVisibility(const Link& l, const RayWeights& weights) const {
+    double seen = 0.0, total = 0.0;
+    for (std::size_t i = 0; i < l.rays; ++i) {
+        total += weights[i];
+        if (!(((l.blockedStatic | l.blockedDynamic) >> i) & 1u)) seen += weights[i];
+    }
+    return total > 0.0 ? static_cast<float>(seen / total) : 1.0f;
+}
+
+namespace {
+
+// Where a box lies with respect to a surface's plane.
+enum class Side { Front, Behind, Both };
+Side sideOf(const HElement& surface, const Aabb& box) {
+    const double tolerance = 1e-9 * glm::length(box.extent() + surface.box.extent());
+    bool front = false, behind = false;
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 corner((k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z);
+        const double h = glm::dot(surface.normal, corner - surface.center);
+        front = front || h > tolerance;
+        behind = behind || h < -tolerance;
+    }
+    return front && behind ? Side::Both : front ? Side::Front : Side::Behind;
+}
+
+}  // namespace
 
 bool Refiner::admissible(ElementId s, ElementId r) const {
     const HElement& a = h_[s];
@@ -98,6 +94,15 @@ bool Refiner::admissible(ElementId s, ElementId r) const {
     return glm::dot(d, d) > reach * reach * (1.0 + 1e-9);
 }
 
+bool Refiner::neverCarries(ElementId s, ElementId r) const {
+    const HElement& a = h_[s];
+    const HElement& b = h_[r];
+    // One-sided: a surface sends and receives only in front of itself.
+    if (a.isSurface() && sideOf(a, b.box) == Side::Behind) return true;
+    if (b.isSurface() && sideOf(b, a.box) == Side::Behind) return true;
+    return a.isSurface() && b.isSurface() && a.polygon == b.polygon;
+}
+
 FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const {
     const HElement& src = h_[s];
     const HElement& rcv = h_[r];
@@ -106,7 +111,8 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
         // Close pairs need more quadrature points: the integrand varies fast.
         const double reach = radius(src) + radius(rcv);
         const glm::dvec3 d = rcv.center - src.center;
-        const int order = glm::dot(d, d) < 4.0 * reach * reach ? 5 : 3;
+        const double d2 = glm::dot(d, d);
+        const int order = d2 < 4.0 * reach * reach ? 5 : d2 < 16.0 * reach * reach ? 3 : 2;
         // Integrate over the smaller patch (the inner integral over the other
         // is exact) and use reciprocity, A_r F_rs = A_s F_sr: sampling the
         // larger patch would miss the peak of a small neighbour's kernel.
@@ -114,14 +120,32 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
         if (rcv.area > src.area) e.mean = src.area / rcv.area * estimateFormFactor(src.patch, rcv.patch, order).mean;
         return e;
     }
-    const glm::dvec3 d = rcv.center - src.center;
-    const double d2 = glm::dot(d, d);
-    if (!(d2 > 0.0)) return {};
-    const glm::dvec3 dir = d / std::sqrt(d2);
-    const double gs = src.isSurface() ? std::max(0.0, glm::dot(src.normal, dir)) : 0.25;
-    const double gr = rcv.isSurface() ? std::max(0.0, -glm::dot(rcv.normal, dir)) : 0.25;
-    const double f = pointApproxFormFactor(src.area, gs, gr, d2);
-    return {f, f, f};
+    // A cluster end: the receiver's points (a surface's Gauss points, a
+    // cluster's points on its surfaces facing the source) to the source's
+    // points (ClusterTransfer.h), each pair by the point kernel.
+    const SourcePoints source = sourcePoints(h_, s, rcv.center), receiver = sourcePoints(h_, r, src.center);
+    FormFactorEstimate e;
+    const double area = receiver.totalArea();
+    if (!(area > 0.0)) return e;
+    e.min = INFINITY;
+    for (int j = 0; j < receiver.n; ++j) {
+        const double f = pointToSource(source, receiver.p[j], receiver.normal[j]);
+        e.mean += receiver.area[j] / area * f;
+        e.min = std::min(e.min, f);
+        e.max = std::max(e.max, f);
+    }
+    return e;
+}
+
+double Refiner::coupling(const Link& link, double transfer) const {
+    const HElement& r = h_[link.receiver];
+    if (r.isSurface()) return r.area * transfer;
+    // A cluster receives on its surfaces that face the source.
+    return transfer * sourcePoints(h_, link.receiver, h_[link.source].center).totalArea();
+}
+
+double Refiner::potentialTransfer(const Link& link) const {
+    return h_[link.source].oracle * coupling(link, link.unoccluded);
 }
 
 Link Refiner::compute(ElementId s, ElementId r) const {
@@ -132,12 +156,17 @@ Link Refiner::compute(ElementId s, ElementId r) const {
 
 void Refiner::refreshVisibility(Link& l) const {
     l.visStale = false;
-    l.visStatic = l.visDynamic = 1.0f;
+    l.blockedStatic = l.blockedDynamic = 0;
+    l.rays = 0;
+    l.visible = 1.0f;
     if (!(l.unoccluded > 0.0)) return;
     Segments seg;
-    segments(l.source, l.receiver, seg);
-    l.visStatic = static_cast<float>(unoccluded(Layer::Static, seg));
-    l.visDynamic = static_cast<float>(unoccluded(Layer::Dynamic, seg));
+    RayWeights weights;
+    const std::size_t n = segments(l.source, l.receiver, seg, weights);
+    l.rays = static_cast<std::uint8_t>(n);
+    l.blockedStatic = rays_.blocked(Layer::Static, std::span(seg.data(), n));
+    l.blockedDynamic = rays_.blocked(Layer::Dynamic, std::span(seg.data(), n));
+    l.visible = weightedVisibility(l, weights);
 }
 
 bool Refiner::refinesAtAnyVisibility(const Link& link) const {
@@ -145,8 +174,7 @@ bool Refiner::refinesAtAnyVisibility(const Link& link) const {
     if (!admissible(link.source, link.receiver)) return true;
     // wouldRefine's bound is at least this for a cluster end, whatever v.
     const bool clusterEnd = !h_[link.source].isSurface() || !h_[link.receiver].isSurface();
-    return clusterEnd && h_[link.source].oracle * h_[link.receiver].area * link.unoccluded >
-                             settings_.epsilon * settings_.referencePower * (1.0 + 1e-9);
+    return clusterEnd && kEstimatedWeight * potentialTransfer(link) > settings_.epsilon * settings_.referencePower * (1.0 + 1e-9);
 }
 
 Link Refiner::computeUnoccluded(ElementId s, ElementId r) const {
@@ -157,32 +185,38 @@ Link Refiner::computeUnoccluded(ElementId s, ElementId r) const {
     l.unoccluded = f.mean;
     l.spread = static_cast<float>(f.max - f.min);
     const bool dynamic = touchesMovable(s) || touchesMovable(r);
-    // A cluster pair that is not admissible still needs its link: it is refined next.
-    const bool mustRefine = !admissible(s, r);
-    if (l.unoccluded <= 0.0 && !dynamic && !mustRefine) return l;  // not live: never carries light
+    // Only a pair that no light can cross is dropped; a pair whose sample
+    // points happen to see nothing keeps its link (refinement may find more).
+    if (!dynamic && neverCarries(s, r)) return l;  // not live
     l.live = true;
     l.visStale = l.unoccluded > 0.0;
     return l;
 }
 
-void Refiner::segments(ElementId s, ElementId r, Segments& out) const {
-    const Points ps = samplePoints(s), pr = samplePoints(r);
-    out.n = 0;
-    for (std::size_t i = 0; i < ps.n; ++i)
-        for (std::size_t j = 0; j < pr.n; ++j) {
-            out.from[out.n] = ps.p[i];
-            out.to[out.n++] = pr.p[j];
-        }
-}
-
-double Refiner::unoccluded(Layer layer, const Segments& s) const {
-    return rays_.unoccludedFraction(layer, std::span(s.from.data(), s.n), std::span(s.to.data(), s.n));
-}
-
-float Refiner::dynamicVisibility(ElementId s, ElementId r) const {
+void Refiner::refreshDynamicVisibility(Link& link) const {
     Segments seg;
-    segments(s, r, seg);
-    return static_cast<float>(unoccluded(Layer::Dynamic, seg));
+    RayWeights weights;
+    const std::size_t n = segments(link.source, link.receiver, seg, weights);
+    link.blockedDynamic = rays_.blocked(Layer::Dynamic, std::span(seg.data(), n));
+    link.visible = weightedVisibility(link, weights);
+}
+
+LinkId Refiner::attachUnseen(const Link& link) {
+    const LinkId id = links_.add(link);
+    Link& l = links_[id];
+    l.gathered = 0.0;  // carries nothing until its rays are cast (activate)
+    h_[link.receiver].links.push_back(id);
+    h_[link.source].outLinks.push_back(id);
+    return id;
+}
+
+void Refiner::castPendingRays(const std::vector<LinkId>& ids) {
+    tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t i) {
+        Link& l = links_[ids[i]];
+        if (l.live && !l.passive && l.visStale) refreshVisibility(l);
+    });
+    for (LinkId id : ids)
+        if (links_[id].live && !links_[id].passive && links_[id].gathered != links_[id].formFactor()) regather(id);
 }
 
 LinkId Refiner::attach(const Link& link) {
@@ -202,32 +236,30 @@ void Refiner::activate(LinkId id) {
     l.passive = false;
     if (l.visStale) refreshVisibility(l);
     l.gathered = l.formFactor();
-    // In-place gather (eq. 1): the receiver now holds this link's transfer.
-    r.irradiance += l.gathered * h_[l.source].gathered;
-    markDirty(l.receiver);
+    markStale(l.receiver);  // eq. 1: the receiver now holds this link's transfer
 }
 
 void Refiner::deactivate(LinkId id) {
     Link& l = links_[id];
     HElement& r = h_[l.receiver];
-    // Eq. 2: take back what the receiver gathered through this link.
-    r.irradiance -= l.gathered * h_[l.source].gathered;
-    markDirty(l.receiver);
     l.gathered = 0.0;
     unorderedErase(r.links, id);
-    auto& out = h_[l.source].outLinks;
-    unorderedErase(out, id);
+    unorderedErase(h_[l.source].outLinks, id);
     r.plinks.push_back(id);
     l.passive = true;
+    markStale(l.receiver);  // eq. 2: what it gathered through this link goes
 }
 
 void Refiner::regather(LinkId id) {
     Link& l = links_[id];
-    HElement& r = h_[l.receiver];
-    const double f = l.formFactor();
-    r.irradiance += (f - l.gathered) * h_[l.source].gathered;
-    markDirty(l.receiver);
-    l.gathered = f;
+    l.gathered = l.formFactor();
+    markStale(l.receiver);
+}
+
+void Refiner::markStale(ElementId receiver) {
+    h_[receiver].stale = true;
+    if (!h_[receiver].isSurface()) h_[receiver].arrivalsStale = true;
+    markDirty(receiver);
 }
 
 void Refiner::markDirty(ElementId e) {
@@ -239,6 +271,26 @@ void Refiner::markDirty(ElementId e) {
 std::vector<ElementId> Refiner::takeDirty() {
     std::vector<ElementId> out;
     out.swap(dirty_);
+    // Summed again rather than adjusted link by link: exact whatever changed
+    // (a cluster source's direction moves with it), and no rounding drift.
+    tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
+        HElement& e = h_[out[i]];
+        if (!e.stale) return;
+        if (!e.isSurface()) return;  // a cluster's arrivals are resolved when it is pushed
+        glm::dvec3 irradiance(0.0);
+        double sum = 0.0;
+        for (LinkId id : e.links) {
+            const Link& l = links_[id];
+            irradiance += l.gathered * sentRadiosity(h_, l);
+            sum += l.gathered;
+        }
+        e.irradiance = irradiance;
+        e.formFactorSum = sum;
+    });
+    for (ElementId e : out) {
+        if (h_[e].stale && h_[e].isSurface()) h_.refreshCoverage(e);
+        h_[e].stale = false;
+    }
     return out;
 }
 
@@ -284,8 +336,11 @@ bool Refiner::wouldRefine(const Link& link) const {
     const bool clusterEnd = !h_[link.source].isSurface() || !h_[link.receiver].isSurface();
     const double f = (clusterEnd || (v > 0.0 && v < 1.0)) ? link.unoccluded : link.formFactor();
     // BF, and the same bound on how much the transfer varies across the receiver.
-    const double bound = h_[link.source].oracle * h_[link.receiver].area *
-                         std::max(f, double(link.spread) * v);
+    // A transfer that is estimated (a cluster end's point quadrature, or a
+    // visibility between 0 and 1 from 16 rays) is less certain than one
+    // computed exactly, and counts for more.
+    const double weight = (clusterEnd || (v > 0.0 && v < 1.0)) ? kEstimatedWeight : 1.0;
+    const double bound = weight * h_[link.source].oracle * coupling(link, std::max(f, double(link.spread) * v));
     // A little slack: symmetric scenes put many links exactly on the threshold,
     // and the same scene at another scale must not fall on the other side.
     return bound > settings_.epsilon * settings_.referencePower * (1.0 + 1e-9);
@@ -326,7 +381,7 @@ std::vector<std::pair<ElementId, ElementId>> Refiner::childPairs(const Link& lin
     return pairs;
 }
 
-void Refiner::refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created) {
+void Refiner::refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created, bool deferRays) {
     // Subdivide first (it changes the hierarchy), then compute every new
     // link of the batch on all cores, then attach them in a fixed order.
     std::vector<std::pair<ElementId, ElementId>> pairs;
@@ -335,10 +390,15 @@ void Refiner::refine(const std::vector<LinkId>& ids, std::vector<LinkId>& create
         pairs.insert(pairs.end(), p.begin(), p.end());
     }
     std::vector<Link> computed(pairs.size());
-    tbb::parallel_for(std::size_t(0), pairs.size(),
-                      [&](std::size_t i) { computed[i] = compute(pairs[i].first, pairs[i].second); });
+    tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t i) {
+        Link& l = computed[i];
+        l = computeUnoccluded(pairs[i].first, pairs[i].second);
+        // A link about to be refined again whatever its visibility needs no
+        // rays: its children cast theirs.
+        if (l.live && !(deferRays && refinesAtAnyVisibility(l))) refreshVisibility(l);
+    });
     for (const Link& l : computed)
-        if (l.live) created.push_back(attach(l));
+        if (l.live) created.push_back(l.visStale ? attachUnseen(l) : attach(l));
     // The refined links stay as p-links on their receivers.
     for (LinkId id : ids) deactivate(id);
 }
@@ -362,9 +422,11 @@ std::size_t Refiner::refineAll(std::vector<LinkId> wave) {
             break;
         }
         wave.clear();
-        refine(batch, wave);
+        refine(batch, wave, true);
         refined += batch.size();
     }
+    // Links left unrefined (the cap) that deferred their rays cast them now.
+    castPendingRays(wave);
     return refined;
 }
 

@@ -9,20 +9,21 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/RayCaster.h"
 #include "hierarchy/Hierarchy.h"
 #include "links/Link.h"
 
 namespace rad {
 
-class RayCaster;
-enum class Layer;
 
 struct RefineSettings {
     // A link is refined while B_s * F * A_r exceeds epsilon times the total
     // emitted power: relative, so the same epsilon suits any scene scale.
-    double epsilon = 2e-4;
+    double epsilon = 5e-5;
     double referencePower = 1.0;  // total emitted power (luminance)
-    int samplesPerElement = 4;       // visibility rays: samples on the source x on the receiver
+    // Visibility sample points per surface element: 4 (a 2 x 2 Gauss grid)
+    // or 1 (its centre). A link casts the product of its two ends' counts.
+    int samplesPerElement = 4;
     std::size_t maxLinks = 4'000'000;  // memory cap on live links and p-links
 };
 
@@ -30,31 +31,30 @@ class Refiner {
 public:
     Refiner(Hierarchy& hierarchy, LinkStore& links, const RayCaster& rays, RefineSettings settings);
 
-    // Recomputes the visibility sample points of the clusters in a subtree
-    // (after it moved).
-    void refreshClusterSamples(ElementId subtree);
-    // The same for one cluster whose children changed.
-    void refreshClusterSample(ElementId cluster);
-
     // The link s -> r computed but not attached; `live` is false when it
     // carries nothing and never can (facing away, both static).
     Link compute(ElementId s, ElementId r) const;
     // The same without the visibility rays: the link's visibility is stale.
     Link computeUnoccluded(ElementId s, ElementId r) const;
-    // Casts the rays of both visibility parts (1 where nothing can arrive).
+    // Casts the rays of both visibility parts.
     void refreshVisibility(Link& link) const;
     // Whether the link would be refined whatever its visibility (not
     // admissible, or a cluster end whose unoccluded transfer alone exceeds
     // the threshold): a p-link then needs no rays to be judged.
     bool refinesAtAnyVisibility(const Link& link) const;
     // Only the dynamic part of the visibility (sec. 3.4): what a move changes
-    // for a link whose two ends stay put.
-    float dynamicVisibility(ElementId s, ElementId r) const;
+    // for a link whose two ends stay put. The same rays as the static part.
+    void refreshDynamicVisibility(Link& link) const;
 
     // Link bookkeeping. Each keeps the receiver's irradiance equal to the sum
-    // of gathered F times the source's gathered B over its active links (the
-    // in-place gather, eq. 1 and 2), and marks the receiver dirty.
+    // of held transfer times the radiosity its source sends over its active
+    // links (the in-place gather, eq. 1 and 2): the receiver is marked to sum
+    // its links again before the next push (takeDirty), and dirty.
     LinkId attach(const Link& link);  // a new active link
+    // A new active link whose rays are not cast yet: it holds no transfer.
+    LinkId attachUnseen(const Link& link);
+    // Casts the deferred rays of active links among `ids` and gathers them.
+    void castPendingRays(const std::vector<LinkId>& ids);
     void activate(LinkId id);         // p-link -> active (reinstate)
     void deactivate(LinkId id);       // active -> p-link (refined)
     void regather(LinkId id);         // its form factor changed
@@ -62,6 +62,8 @@ public:
 
     // Elements whose own irradiance changed since the last takeDirty().
     void markDirty(ElementId e);
+    // Sums again the irradiance of the elements whose links changed, and
+    // hands out the dirty elements (for a partial push-pull).
     std::vector<ElementId> takeDirty();
 
     // The first link of a solve: the root cluster with itself.
@@ -74,6 +76,9 @@ public:
     std::size_t refineAll(std::vector<LinkId> links);
 
     bool wouldRefine(const Link& link) const;
+    // The power the link could carry at full visibility, from the oracle of
+    // its source: the quantity BF refinement compares with the threshold.
+    double potentialTransfer(const Link& link) const;
     // How many links refining this one would create (before dropping those
     // that carry nothing): its cost under a budget.
     std::size_t childCount(const Link& link) const;
@@ -81,7 +86,10 @@ public:
     // line-space children; the link becomes a p-link. Appends the new links.
     // The links must be distinct and active; their new links are computed in
     // parallel.
-    void refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created);
+    // deferRays: new links that will be refined whatever their visibility
+    // are attached without casting rays (see attachUnseen); the caller must
+    // refine them or cast their rays (castPendingRays).
+    void refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created, bool deferRays = false);
 
     bool capReached() const { return capReached_; }
     const RefineSettings& settings() const { return settings_; }
@@ -89,43 +97,44 @@ public:
 
     // Whether the point (cluster) approximation of the form factor is valid.
     bool admissible(ElementId s, ElementId r) const;
+    // Whether no light can go from s to r: one of them a surface with the
+    // other entirely behind it, or both parts of one polygon.
+    bool neverCarries(ElementId s, ElementId r) const;
 
 private:
+    // How much more an estimated transfer (a cluster end, or a partial
+    // visibility) counts in the refinement criterion than an exact one: set
+    // so that the measured error against path-traced references is about the
+    // same for both kinds at the default epsilon (README, "Accuracy").
+    static constexpr double kEstimatedWeight = 2.5;
     enum class Split { None, Source, Receiver, Both };
     Split chooseSplit(const Link& link) const;
     bool canSplit(ElementId e) const;
     FormFactorEstimate unoccludedFormFactor(ElementId s, ElementId r) const;
-    // Visibility sample points of an element, in fixed storage: a link is
-    // computed for every refinement and every move, and heap allocations
-    // there cost more than the points.
-    static constexpr std::size_t kMaxPoints = 16;  // per element: order 4
-    struct Points {
-        std::array<glm::dvec3, kMaxPoints> p;
-        std::size_t n = 0;
-    };
-    struct Segments {
-        std::array<glm::dvec3, kMaxPoints * kMaxPoints> from, to;
-        std::size_t n = 0;
-    };
-    Points samplePoints(ElementId e) const;
-    void segments(ElementId s, ElementId r, Segments& out) const;
-    double unoccluded(Layer layer, const Segments& s) const;
+    // A transfer of the link (unoccluded F, or kernel G) times the receiving area it reaches (A_r F for
+    // a surface receiver, G times the projected area for a cluster).
+    public: double coupling(const Link& link, double transfer) const; private:
+    // Visibility rays: between the two ends' points (ClusterTransfer's
+    // sourcePoints: Gauss points on a surface, a cluster's points on its
+    // surfaces facing the other end), in fixed storage: a link is computed
+    // for every refinement and every move, and heap allocations there cost
+    // more than the points.
+    using Segments = std::array<RayCaster::Segment, RayCaster::kMaxSegments>;
+    using RayWeights = std::array<double, RayCaster::kMaxSegments>;
+    std::size_t segments(ElementId s, ElementId r, Segments& out, RayWeights& weights) const;
+    float weightedVisibility(const Link& link, const RayWeights& weights) const;
     // Whether e lies in, or holds, an object cluster that can move (under the
     // root): its links are kept even when they carry nothing where it stands.
     bool touchesMovable(ElementId e) const;
     std::vector<std::pair<ElementId, ElementId>> childPairs(const Link& link);
+    void markStale(ElementId receiver);
 
     Hierarchy& h_;
     LinkStore& links_;
     const RayCaster& rays_;
     RefineSettings settings_;
-    // Per cluster: points on its surfaces, stratified by area, for visibility rays.
-    std::vector<std::array<glm::dvec3, 4>> clusterSamples_;
     bool capReached_ = false;
     std::vector<ElementId> dirty_;
 };
-
-// Luminance of linear RGB (Rec. 709), the scalar used for error estimates.
-inline double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 }  // namespace rad

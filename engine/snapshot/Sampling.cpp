@@ -4,33 +4,14 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "refine/Refiner.h"
 
 namespace rad {
-namespace {
-
-std::vector<glm::dvec2> paramSamples(int vertexCount) {
-    std::vector<glm::dvec2> uv;
-    if (vertexCount == 4) {
-        for (int j = 0; j < 4; ++j)
-            for (int i = 0; i < 4; ++i) uv.emplace_back((i + 0.5) / 4.0, (j + 0.5) / 4.0);
-        return uv;
-    }
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; i + j < 4; ++j) {
-            uv.emplace_back((i + 1.0 / 3.0) / 4.0, (j + 1.0 / 3.0) / 4.0);  // upward
-            if (i + j < 3) uv.emplace_back((i + 2.0 / 3.0) / 4.0, (j + 2.0 / 3.0) / 4.0);  // downward
-        }
-    return uv;
-}
-
-}  // namespace
 
 RadiositySamples sampleRadiosity(const Scene& scene, const Hierarchy& hierarchy) {
     RadiositySamples out;
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
         const ElementId top = hierarchy.polygonElement(p);
-        const std::vector<glm::dvec2> uv = paramSamples(scene.polygons[p].vertexCount);
+        const auto& uv = polygonSampleParams(scene.polygons[p].vertexCount);
         const double w = scene.polygons[p].area() / static_cast<double>(uv.size());
         for (const glm::dvec2& s : uv) {
             out.luminance.push_back(top == kNone ? 0.0 : luminance(hierarchy[hierarchy.pathTo(p, s).back()].radiosity));

@@ -1,112 +1,172 @@
 #include "solve/Solver.h"
 
-#include <cmath>
-
 #include <tbb/parallel_for.h>
 
-#include "refine/Refiner.h"
+#include <cmath>
+#include <map>
 
 namespace rad {
 
 void Solver::gatherAll() {
-    for (ElementId id = 0; id < h_.size(); ++id) h_[id].gathered = h_[id].radiosity;
+    for (ElementId id = 0; id < h_.size(); ++id) {
+        HElement& e = h_[id];
+        e.gathered = e.radiosity;
+        if (e.shape != kNone) h_.shape(id).gathered = h_.shape(id).power;
+    }
     tbb::parallel_for(ElementId(0), static_cast<ElementId>(h_.size()), [&](ElementId id) {
         HElement& e = h_[id];
         glm::dvec3 irradiance(0.0);
+        double sum = 0.0;
         for (LinkId l : e.links) {
             Link& link = links_[l];
             link.gathered = link.formFactor();
-            irradiance += link.gathered * h_[link.source].gathered;
+            if (!e.isSurface()) continue;  // a cluster's arrivals are resolved when it is pushed
+            irradiance += link.gathered * sentRadiosity(h_, link);
+            sum += link.gathered;
         }
         e.irradiance = irradiance;
+        e.formFactorSum = sum;
+        e.stale = false;
     });
+    tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(h_.polygonCount()),
+                      [&](std::uint32_t p) {
+                          if (h_.polygonElement(p) != kNone)
+                              h_.refreshQuadtreeCoverage(h_.polygonElement(p));
+                      });
 }
 
-glm::dvec3 Solver::pushPull(ElementId id, const glm::dvec3& down, double& change, double& total) {
-    HElement& e = h_[id];
-    const glm::dvec3 arriving = down + e.irradiance;
-    glm::dvec3 b(0.0);
-    if (e.isLeaf()) {
-        b = e.isSurface() ? e.emission + e.reflectance * arriving : glm::dvec3(0.0);
-        change += e.area * std::abs(luminance(b - e.radiosity));
-        total += e.area * std::abs(luminance(b));
-    } else {
-        double area = 0.0;
-        for (ElementId c : e.children) {
-            const glm::dvec3 cb = pushPull(c, arriving, change, total);
-            b += h_[c].area * cb;
-            area += h_[c].area;
-        }
-        if (area > 0.0) b /= area;
+double Solver::meanUncovered(const HElement& e) const {
+    double area = 0.0, uncovered = 0.0;
+    for (ElementId c : e.children) {
+        area += h_[c].area;
+        uncovered += h_[c].area * (1.0 - std::min(1.0, h_[c].coverage));
     }
-    h_[id].radiosity = b;
-    h_[id].changed = h_[id].dirty = false;
+    return area > 0.0 ? uncovered / area : 0.0;
+}
+
+Solver::Down Solver::shareOf(const Down& down, const HElement& child, double meanUncovered) {
+    if (!(meanUncovered > 1e-6)) return down;
+    const double w = (1.0 - std::min(1.0, child.coverage)) / meanUncovered;
+    return Down{w * down.irradiance, w * down.formFactorSum};
+}
+
+Solver::Down Solver::surfaceDown(const HElement& e, const Down& down, const Walk& walk) const {
+    Down d = down;
+    // The polygon's own element: what its clusters' links bring, by its orientation.
+    if (e.depth == 0) {
+        d = Down{};
+        walk.arriving.resolve(h_, e, d.irradiance, d.formFactorSum);
+    }
+    d.irradiance += e.irradiance;
+    d.formFactorSum += e.formFactorSum;
+    return d;
+}
+
+glm::dvec3 Solver::push(ElementId id, const Down& down, bool forced, int depth, Walk& walk) {
+    HElement& e = h_[id];
+    if (!forced && !e.changed) return e.radiosity;
+    if (walk.visited) walk.visited->push_back(id);
+    const bool below = forced || e.dirty;
+    glm::dvec3 b(0.0);
+    if (!e.isSurface()) {
+        const std::size_t mark = walk.arriving.add(h_, links_, arrivalTable(id));
+        const std::vector<ElementId>& children = e.children;
+        double area = 0.0;
+        if (depth < kParallelDepth && children.size() > 1) {
+            // The clusters near the root split the work between the cores:
+            // their subtrees are disjoint. Each child's walk is kept apart and
+            // taken in order, as the serial descent would.
+            std::vector<glm::dvec3> childB(children.size());
+            std::vector<Walk> walks(children.size());
+            std::vector<std::vector<ElementId>> visited(children.size());
+            tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) {
+                walks[i].arriving = walk.arriving;
+                walks[i].visited = walk.visited ? &visited[i] : nullptr;
+                childB[i] = push(children[i], Down{}, below, depth + 1, walks[i]);
+            });
+            for (std::size_t i = 0; i < children.size(); ++i) {
+                b += h_[children[i]].area * childB[i];
+                area += h_[children[i]].area;
+                walk.change += walks[i].change;
+                walk.total += walks[i].total;
+                if (walk.visited)
+                    walk.visited->insert(walk.visited->end(), visited[i].begin(), visited[i].end());
+            }
+        } else {
+            for (ElementId c : children) {
+                b += h_[c].area * push(c, Down{}, below, depth + 1, walk);
+                area += h_[c].area;
+            }
+        }
+        walk.arriving.drop(mark);
+        if (area > 0.0) b /= area;
+        e.radiosity = b;
+        h_.pullPower(id);
+    } else {
+        const Down here = surfaceDown(e, down, walk);
+        if (e.isLeaf()) {
+            b = e.emission + e.reflectance * guarded(here.irradiance, here.formFactorSum);
+            walk.change += e.area * std::abs(luminance(b - e.radiosity));
+            walk.total += e.area * std::abs(luminance(b));
+        } else {
+            // The walk down a quadtree is bound by memory: ask for the
+            // children's fields before the first is read.
+            for (ElementId c : e.children) {
+                const HElement& k = h_[c];
+                __builtin_prefetch(&k.children);
+                __builtin_prefetch(&k.irradiance);
+                __builtin_prefetch(&k.changed);
+            }
+            const double uncovered = meanUncovered(e);
+            double area = 0.0;
+            for (ElementId c : e.children) {
+                b += h_[c].area * push(c, shareOf(here, h_[c], uncovered), below, depth + 1, walk);
+                area += h_[c].area;
+            }
+            if (area > 0.0) b /= area;
+        }
+        e.radiosity = b;
+    }
+    e.changed = e.dirty = false;
     return b;
 }
 
+const ArrivalTable& Solver::arrivalTable(ElementId cluster) const {
+    HElement& c = h_[cluster];
+    ArrivalTable& t = tables_[c.shape];
+    if (c.arrivalsStale || !t.built) {
+        buildArrivalTable(h_, links_, cluster, t);
+        c.arrivalsStale = false;
+    }
+    return t;
+}
+
+std::size_t Solver::memoryBytes() const {
+    std::size_t bytes = tables_.capacity() * sizeof(ArrivalTable);
+    for (const ArrivalTable& t : tables_) bytes += t.memoryBytes() - sizeof(ArrivalTable);
+    return bytes;
+}
+
 double Solver::pushPull() {
-    double change = 0.0, total = 0.0;
-    pushPull(h_.root(), glm::dvec3(0.0), change, total);
-    return total > 0.0 ? change / total : 0.0;
+    tables_.resize(h_.shapeSlots());
+    Walk walk;
+    push(h_.root(), Down{}, true, 0, walk);
+    return walk.total > 0.0 ? walk.change / walk.total : 0.0;
 }
 
 std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dirty) {
     for (ElementId e : dirty)
         for (ElementId a = e; a != kNone && !h_[a].changed; a = h_[a].parent) h_[a].changed = true;
     std::vector<ElementId> visited;
-    partialPushPull(h_.root(), glm::dvec3(0.0), false, 0, visited);
+    tables_.resize(h_.shapeSlots());
+    Walk walk;
+    walk.visited = &visited;
+    push(h_.root(), Down{}, false, 0, walk);
     return visited;
 }
 
-glm::dvec3 Solver::partialPushPull(ElementId id, const glm::dvec3& down, bool forced, int depth,
-                                   std::vector<ElementId>& visited) {
-    HElement& e = h_[id];
-    if (!forced && !e.changed) return e.radiosity;
-    visited.push_back(id);
-    const glm::dvec3 arriving = down + e.irradiance;
-    glm::dvec3 b(0.0);
-    if (e.isLeaf()) {
-        if (e.isSurface()) b = e.emission + e.reflectance * arriving;
-    } else {
-        const bool below = forced || e.dirty;
-        const std::vector<ElementId>& children = e.children;
-        // The clusters near the root split the work between the cores: their
-        // subtrees are disjoint. Each child's visits and mean are gathered
-        // apart and then taken in order, as the serial descent would.
-        double area = 0.0;
-        if (!e.isSurface() && depth < kParallelDepth && children.size() > 1) {
-            std::vector<glm::dvec3> childB(children.size());
-            std::vector<std::vector<ElementId>> childVisited(children.size());
-            tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) {
-                childB[i] = partialPushPull(children[i], arriving, below, depth + 1, childVisited[i]);
-            });
-            for (std::size_t i = 0; i < children.size(); ++i) {
-                b += h_[children[i]].area * childB[i];
-                area += h_[children[i]].area;
-                visited.insert(visited.end(), childVisited[i].begin(), childVisited[i].end());
-            }
-        } else {
-            // The walk is bound by memory: ask for the children's fields before the first is read.
-            for (ElementId c : children) {
-                const HElement& k = h_[c];
-                __builtin_prefetch(&k.children);
-                __builtin_prefetch(&k.area);
-                __builtin_prefetch(&k.irradiance);
-                __builtin_prefetch(&k.changed);
-            }
-            for (ElementId c : children) {
-                b += h_[c].area * partialPushPull(c, arriving, below, depth + 1, visited);
-                area += h_[c].area;
-            }
-        }
-        if (area > 0.0) b /= area;
-    }
-    e.radiosity = b;
-    e.changed = e.dirty = false;
-    return b;
-}
-
-SolveResult Solver::solve(const SolveSettings& settings, const std::function<void(int, double)>& progress) {
+SolveResult Solver::solve(const SolveSettings& settings,
+                          const std::function<void(int, double)>& progress) {
     SolveResult result;
     double previous = 0.0;
     for (int it = 1; it <= settings.maxIterations; ++it) {
@@ -137,31 +197,54 @@ SolveResult Solver::solve(const SolveSettings& settings, const std::function<voi
     return result;
 }
 
+void Solver::forEachLeaf(
+    const std::function<void(const HElement&, const glm::dvec3&, double)>& f) const {
+    tables_.resize(h_.shapeSlots());
+    Walk walk;
+    const std::function<void(ElementId, const Down&)> visit = [&](ElementId id, const Down& down) {
+        const HElement& e = h_[id];
+        if (!e.isSurface()) {
+            const std::size_t mark = walk.arriving.add(h_, links_, arrivalTable(id));
+            for (ElementId c : e.children) visit(c, Down{});
+            walk.arriving.drop(mark);
+            return;
+        }
+        const Down here = surfaceDown(e, down, walk);
+        if (e.isLeaf()) {
+            f(e, here.irradiance, here.formFactorSum);
+            return;
+        }
+        const double uncovered = meanUncovered(e);
+        for (ElementId c : e.children) visit(c, shareOf(here, h_[c], uncovered));
+    };
+    visit(h_.root(), Down{});
+}
+
 EnergyBalance Solver::energy() const {
     EnergyBalance balance;
-    // Walk down accumulating irradiance; only leaves absorb and reflect.
-    struct Item {
-        ElementId id;
-        glm::dvec3 down;
-    };
-    std::vector<Item> stack{{h_.root(), glm::dvec3(0.0)}};
-    while (!stack.empty()) {
-        const Item item = stack.back();
-        stack.pop_back();
-        const HElement& e = h_[item.id];
-        const glm::dvec3 arriving = item.down + e.irradiance;
-        if (e.isLeaf()) {
-            if (!e.isSurface()) continue;
-            balance.emitted += e.area * luminance(e.emission);
-            balance.received += e.area * luminance(arriving);
-            balance.absorbed += e.area * luminance((glm::dvec3(1.0) - e.reflectance) * arriving);
-            balance.reflected += e.area * luminance(e.reflectance * arriving);
-        } else {
-            for (ElementId c : e.children) stack.push_back({c, arriving});
-        }
-    }
+    forEachLeaf([&](const HElement& e, const glm::dvec3& irradiance, double sum) {
+        const glm::dvec3 arriving = guarded(irradiance, sum);
+        balance.emitted += e.area * luminance(e.emission);
+        balance.received += e.area * luminance(arriving);
+        balance.absorbed += e.area * luminance((glm::dvec3(1.0) - e.reflectance) * arriving);
+        balance.reflected += e.area * luminance(e.reflectance * arriving);
+    });
     balance.escaped = balance.emitted - balance.absorbed;
     return balance;
+}
+
+std::vector<GuardAction> Solver::guardActions(double threshold) const {
+    std::map<std::uint32_t, GuardAction> byObject;
+    forEachLeaf([&](const HElement& e, const glm::dvec3&, double sum) {
+        if (!(sum > 1.0 + threshold)) return;
+        GuardAction& a = byObject[e.object];
+        a.object = e.object;
+        a.area += e.area;
+        a.largestSum = std::max(a.largestSum, sum);
+    });
+    std::vector<GuardAction> out;
+    for (const auto& [object, action] : byObject) out.push_back(action);
+    return out;
 }
 
 }  // namespace rad

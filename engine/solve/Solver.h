@@ -1,13 +1,23 @@
 #pragma once
 // Gather and push-pull (Hanrahan et al. 1991; with clusters, Sillion 1995),
 // iterated to convergence in double precision.
+//
+// The energy guard: a point's form factors toward everything it sees sum to
+// at most one. Where the links gathered at a leaf and its ancestors sum to
+// more (coincident geometry the visibility did not separate, quadrature and
+// point-approximation errors), the leaf's irradiance is divided by that sum:
+// no leaf reflects more light than a closed enclosure would send it, so the
+// iteration cannot diverge for reflectance below one.
 
+#include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "hierarchy/Hierarchy.h"
 #include "links/Link.h"
 #include "radiosity/Settings.h"
 #include "radiosity/Stats.h"
+#include "solve/ClusterTransfer.h"
 
 namespace rad {
 
@@ -18,33 +28,88 @@ struct SolveResult {
     double estimatedError = 0.0;  // relative, extrapolated
 };
 
+// Where the energy guard acted, per object.
+struct GuardAction {
+    std::uint32_t object = 0;
+    double area = 0.0;        // of its leaves whose form factors summed above 1 + threshold
+    double largestSum = 0.0;  // the largest sum met
+};
+
 class Solver {
-public:
+  public:
     Solver(Hierarchy& hierarchy, LinkStore& links) : h_(hierarchy), links_(links) {}
 
-    // I_r = sum over active links of F B_s, for every element; records the
-    // form factor gathered on each link.
+    // Every element's gathered state becomes its current one, every link's
+    // held transfer its form factor, and every surface's irradiance the sum
+    // over its links.
     void gatherAll();
     // Pushes irradiance down, computes leaf radiosity, pulls area-weighted
-    // means up. Returns the area-weighted relative change of leaf radiosity.
+    // means (and cluster facet powers) up. Returns the area-weighted relative
+    // change of leaf radiosity.
     double pushPull();
     // Partial push-pull (Fig. 7): only the paths to the dirty elements and the
     // subtrees below them are visited; elsewhere the stored B stands. Clears
     // the marks. Returns the elements visited.
     std::vector<ElementId> partialPushPull(const std::vector<ElementId>& dirty);
     // Iterates gather and push-pull until converged or maxIterations.
-    SolveResult solve(const SolveSettings& settings, const std::function<void(int, double)>& progress = {});
+    SolveResult solve(const SolveSettings& settings,
+                      const std::function<void(int, double)>& progress = {});
 
     EnergyBalance energy() const;
+    // The objects where the energy guard divided by more than 1 + threshold.
+    std::vector<GuardAction> guardActions(double threshold) const;
+    std::size_t memoryBytes() const;
+    // Visits every surface leaf with the irradiance arriving there (before
+    // the guard) and its form-factor sum.
+    void forEachLeaf(
+        const std::function<void(const HElement&, const glm::dvec3&, double)>& f) const;
 
-private:
-    glm::dvec3 pushPull(ElementId e, const glm::dvec3& down, double& change, double& total);
-    // Cluster levels (from the root) whose children are pushed and pulled in parallel.
+  private:
+    // What a surface element receives from above: irradiance and the sum of
+    // the form factors it came through.
+    struct Down {
+        glm::dvec3 irradiance{0.0};
+        double formFactorSum = 0.0;
+    };
+    // The walk state of one descent: what the ancestor clusters' links bring,
+    // and, for partial push-pulls, the elements visited.
+    struct Walk {
+        Arrivals arriving;
+        std::vector<ElementId>* visited = nullptr;
+        double change = 0.0, total = 0.0;
+    };
+    // One element of a push-pull: its new B. `forced`: the whole subtree is
+    // pushed (full push-pull, or below a dirty element); otherwise only the
+    // paths marked changed are.
+    glm::dvec3 push(ElementId id, const Down& down, bool forced, int depth, Walk& walk);
+    // Cluster levels (from the root) whose children are pushed in parallel.
     static constexpr int kParallelDepth = 8;
-    glm::dvec3 partialPushPull(ElementId e, const glm::dvec3& down, bool forced, int depth,
-                               std::vector<ElementId>& visited);
+    // What arrives at a surface element from above (its ancestors' links).
+    Down surfaceDown(const HElement& e, const Down& down, const Walk& walk) const;
+    // The push of a surface element's irradiance to its children. What
+    // arrives from above came through links coarser than the children's own;
+    // at each child it goes to the part of the view that the child's finer
+    // links leave uncovered (1 - coverage), not to every child alike: next to
+    // a wall, the wall's fine links cover half the view, and the rest of the
+    // room is seen over the other half only. The shares keep the area-weighted
+    // sum, so no power is made or lost, and in a closed scene every leaf's
+    // form factors sum to one, as every point's do.
+    double meanUncovered(const HElement& e) const;
+    static Down shareOf(const Down& down, const HElement& child, double meanUncovered);
+
+    // The arrival table of a cluster, built again when stale. Clusters'
+    // tables are distinct, so disjoint subtrees may build theirs at once.
+    const ArrivalTable& arrivalTable(ElementId cluster) const;
+
     Hierarchy& h_;
     LinkStore& links_;
+    mutable std::vector<ArrivalTable> tables_;  // by cluster shape slot
 };
+
+// The irradiance a leaf reflects: the arriving irradiance, divided by the
+// form-factor sum where it exceeds one (the energy guard).
+inline glm::dvec3 guarded(const glm::dvec3& irradiance, double formFactorSum) {
+    return formFactorSum > 1.0 ? irradiance / formFactorSum : irradiance;
+}
 
 }  // namespace rad

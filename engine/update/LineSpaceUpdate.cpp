@@ -11,6 +11,7 @@
 
 #include "geometry/Shaft.h"
 #include "refine/Refiner.h"
+#include "solve/ClusterTransfer.h"
 #include "solve/Solver.h"
 
 namespace rad {
@@ -205,7 +206,7 @@ void LineSpaceUpdate::recompute(LinkId id) {
         else if (l.visStale)
             refiner_.refreshVisibility(l);
         else
-            l.visDynamic = refiner_.dynamicVisibility(l.source, l.receiver);
+            refiner_.refreshDynamicVisibility(l);
     }
 }
 
@@ -483,9 +484,7 @@ void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats, std::s
     }
 }
 
-double LineSpaceUpdate::heapKey(const Link& l) const {
-    return luminance(h_[l.source].gathered) * l.unoccluded * h_[l.receiver].area;
-}
+double LineSpaceUpdate::heapKey(const Link& l) const { return refiner_.potentialTransfer(l); }
 
 void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats) {
     const double threshold = settings.bounceThreshold * referenceRadiosity_;
@@ -501,7 +500,8 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
                 __builtin_prefetch(&ahead.irradiance);
                 __builtin_prefetch(&ahead.dirty);
             }
-            h_[transfers[k].receiver].irradiance += transfers[k].irradiance;
+            // A cluster receiver resolves its arrivals when pushed: dirty is enough.
+            if (h_[transfers[k].receiver].isSurface()) h_[transfers[k].receiver].irradiance += transfers[k].irradiance;
             refiner_.markDirty(transfers[k].receiver);
         }
         ++stats.bounces;
@@ -516,8 +516,18 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
     // elements and links is most of a bounce.
     std::vector<char> sends(visited.size());
     tbb::parallel_for(std::size_t(0), visited.size(), [&](std::size_t i) {
-        const HElement& el = h_[visited[i]];
-        sends[i] = !el.outLinks.empty() && std::abs(luminance(el.radiosity - el.gathered)) > threshold;
+        const ElementId id = visited[i];
+        const HElement& el = h_[id];
+        if (el.outLinks.empty()) return;
+        if (el.isSurface()) {
+            sends[i] = std::abs(luminance(el.radiosity - el.gathered)) > threshold;
+            return;
+        }
+        // A cluster sends by facet: any facet's radiosity that moved.
+        const ClusterShape& shape = h_.shape(id);
+        for (int k = 0; k < shape.facetCount && !sends[i]; ++k)
+            sends[i] = shape.facets[k].area > 0.0 &&
+                       std::abs(luminance(shape.power[k] - shape.gathered[k])) > threshold * shape.facets[k].area;
     });
     std::vector<ElementId> sources;
     std::vector<std::size_t> first;  // per source: where its transfers start
@@ -533,9 +543,15 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
         HElement& el = h_[sources[k]];
         // In-place gather of the difference on every link leaving the source.
         const glm::dvec3 delta = el.radiosity - el.gathered;
+        ClusterShape::Powers facetDelta{};
+        if (el.shape != kNone) {
+            ClusterShape& shape = h_.shape(sources[k]);
+            for (int f = 0; f < shape.facetCount; ++f) facetDelta[f] = shape.power[f] - shape.gathered[f];
+            shape.gathered = shape.power;
+        }
         for (std::size_t j = 0; j < el.outLinks.size(); ++j) {
             const Link& l = links_[el.outLinks[j]];
-            transfers[first[k] + j] = Transfer{l.receiver, l.gathered * delta};
+            transfers[first[k] + j] = Transfer{l.receiver, l.gathered * sentChange(h_, l, delta, facetDelta)};
         }
         el.gathered = el.radiosity;
     });

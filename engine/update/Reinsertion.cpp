@@ -66,8 +66,10 @@ void recomputeAtAncestors(LinkStore& links, Refiner& refiner, const std::vector<
         Link& l = links[ids[i]];
         l.unoccluded = fresh[i].unoccluded;
         l.spread = fresh[i].spread;
-        l.visStatic = fresh[i].visStatic;
-        l.visDynamic = fresh[i].visDynamic;
+        l.blockedStatic = fresh[i].blockedStatic;
+        l.blockedDynamic = fresh[i].blockedDynamic;
+        l.visible = fresh[i].visible;
+        l.rays = fresh[i].rays;
         l.visStale = fresh[i].visStale;
         if (!l.passive) refiner.regather(ids[i]);  // eq. 1
     }
@@ -111,7 +113,6 @@ ReinsertionStats reinsertUnderRoot(Hierarchy& h, LinkStore& links, Refiner& refi
     std::vector<LinkId> atAncestors;
     if (linked) unlinkSubtree(h, links, refiner, cluster, emptied, atAncestors, ancestors, stats);
     h.attachToRoot(cluster);
-    for (ElementId a : ancestors) refiner.refreshClusterSample(a);
     if (!linked) return stats;
 
     recomputeAtAncestors(links, refiner, atAncestors);

@@ -34,15 +34,15 @@ const std::vector<CommandOptions>& everyCommand() {
         {"solve",
          {"--epsilon", "--min-area", "--max-iterations", "--report", "--image", "--size", "--exposure", "--export",
           "--force"},
-         {"--epsilon E=0.0002", "--max-iterations N=5000", "--exposure EV=0"}},
+         {"--epsilon E=5e-05", "--max-iterations N=5000", "--exposure EV=0"}},
         {"animate",
          {"--object", "--frames", "--translate", "--rotate", "--budget", "--target-fps", "--compare-full", "--report",
           "--images", "--size", "--exposure", "--force", "--epsilon", "--min-area", "--max-iterations"},
-         {"--epsilon E=0.0002", "--max-iterations N=5000", "--exposure EV=0"}},
+         {"--epsilon E=5e-05", "--max-iterations N=5000", "--exposure EV=0"}},
         {"sweep",
          {"--object", "--frames", "--translate", "--rotate", "--budgets", "--target-fps", "--out", "--force",
           "--epsilon", "--min-area", "--max-iterations"},
-         {"--budgets B1,B2,...=0,30,100,330,1000,inf", "--target-fps F1,F2,...=5,10,30,60", "--epsilon E=0.0002",
+         {"--budgets B1,B2,...=0,30,100,330,1000,inf", "--target-fps F1,F2,...=5,10,30,60", "--epsilon E=5e-05",
           "--max-iterations N=5000"}},
     };
     return commands;

@@ -14,6 +14,7 @@
 #include <fstream>
 
 #include "image/Image.h"
+#include "radiosity/Settings.h"
 #include "support/Cli.h"
 #include "support/TempDir.h"
 #include "support/TestScenes.h"
@@ -37,7 +38,7 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const nlohmann::json json = test::readJson(report);
     EXPECT_EQ(json.at("scene"), kCornell);
-    EXPECT_EQ(jsonAt(json, "/epsilon"), 2e-4);  // the default
+    EXPECT_EQ(jsonAt(json, "/epsilon"), EngineSettings{}.epsilon);  // the default
     EXPECT_GT(jsonAt(json, "/min_area"), 0.0);
     for (const char* key : {"/polygons", "/elements", "/links", "/passive_links", "/iterations", "/refine_rounds"}) {
         EXPECT_TRUE(jsonAt(json, key).is_number_integer()) << key;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -33,10 +34,27 @@ Polygon squareX(double y0, double y1, double z0, double z1, double x) {
     return p;
 }
 
-// Whether the segment a -> b is blocked in the layer: one segment through the
-// engine's own query.
-bool occluded(const RayCaster& rc, Layer layer, const glm::dvec3& a, const glm::dvec3& b) {
-    return rc.unoccludedFraction(layer, std::span(&a, 1), std::span(&b, 1)) < 1.0;
+constexpr std::uint32_t kNo = RayCaster::kNoPolygon;
+
+// Whether the segment a -> b (its ends on the given polygons) is blocked in
+// the layer: one segment through the engine's own query.
+bool occluded(const RayCaster& rc, Layer layer, const glm::dvec3& a, const glm::dvec3& b, std::uint32_t fromPolygon = kNo,
+              std::uint32_t toPolygon = kNo) {
+    const RayCaster::Segment s{a, b, fromPolygon, toPolygon};
+    return rc.blocked(layer, std::span(&s, 1)) != 0;
+}
+
+// How many of the segments from[i] -> to[i] the layer blocks, in packets of 16.
+std::size_t blockedCount(const RayCaster& rc, Layer layer, const std::vector<glm::dvec3>& from,
+                         const std::vector<glm::dvec3>& to) {
+    std::size_t n = 0;
+    std::vector<RayCaster::Segment> segments;
+    for (std::size_t i = 0; i < from.size(); ++i) segments.push_back({from[i], to[i]});
+    for (std::size_t i = 0; i < segments.size(); i += 16) {
+        const std::size_t m = std::min<std::size_t>(16, segments.size() - i);
+        n += std::popcount(rc.blocked(layer, std::span(segments.data() + i, m)));
+    }
+    return n;
 }
 
 std::vector<std::uint32_t> allIds(const Scene& s) {
@@ -56,7 +74,7 @@ TEST(RayCaster, BlockerBlocksAndSegmentBesideDoesNot) {
     EXPECT_FALSE(occluded(rc, Layer::Static, {0, 0, 0.5}, {0, 0, 2}));  // both ends above
 }
 
-TEST(RayCaster, FractionWithHalfTheSegmentsBlocked) {
+TEST(RayCaster, MaskMarksTheBlockedSegments) {
     Scene scene;
     scene.polygons = {squareZ(-1, 1, -1, 1, 0)};
     RayCaster rc;
@@ -67,8 +85,60 @@ TEST(RayCaster, FractionWithHalfTheSegmentsBlocked) {
         from.push_back({x, 0.3, -1});
         to.push_back({x, -0.2, 1});
     }
-    EXPECT_DOUBLE_EQ(rc.unoccludedFraction(Layer::Static, from, to), 0.5);
-    EXPECT_DOUBLE_EQ(rc.unoccludedFraction(Layer::Static, {}, {}), 1.0);
+    std::vector<RayCaster::Segment> segments;
+    for (int i = 0; i < 10; ++i) segments.push_back({from[i], to[i]});
+    EXPECT_EQ(rc.blocked(Layer::Static, segments), 0b0011111000);
+    EXPECT_EQ(rc.blocked(Layer::Static, {}), 0);
+    EXPECT_EQ(blockedCount(rc, Layer::Static, from, to), 5u);
+}
+
+// Coincident surfaces: of a stack of identical polygons facing the same way,
+// the one with the lowest index is seen and the others are hidden behind it,
+// from both ends of a segment; so a receiver sees their union, not their sum.
+TEST(RayCaster, CoincidentDuplicatesHideAllButTheLowestIndex) {
+    Scene scene;
+    Polygon down = squareZ(-1, 1, -1, 1, 1);  // facing -z after the swap below
+    std::swap(down.vertices[1], down.vertices[3]);
+    scene.polygons = {down, down, squareZ(-2, 2, -2, 2, 0)};  // 0 and 1 identical, 2 the floor below
+    RayCaster rc;
+    rc.setFrame(scene.bounds());
+    rc.setLayer(Layer::Static, scene, allIds(scene));
+    const glm::dvec3 floor(0.2, 0.1, 0), plate(-0.3, 0.4, 1);
+    EXPECT_FALSE(occluded(rc, Layer::Static, floor, plate, 2, 0));  // the floor sees plate 0
+    EXPECT_TRUE(occluded(rc, Layer::Static, floor, plate, 2, 1));   // plate 1 is behind it
+    EXPECT_FALSE(occluded(rc, Layer::Static, plate, floor, 0, 2));  // plate 0 sees the floor
+    EXPECT_TRUE(occluded(rc, Layer::Static, plate, floor, 1, 2));   // plate 1 does not
+    // A plate 0.1 mm above the floor is not coincident with it: it blocks.
+    Scene thin;
+    Polygon plateDown = squareZ(-1, 1, -1, 1, 1e-4);
+    std::swap(plateDown.vertices[1], plateDown.vertices[3]);
+    thin.polygons = {squareZ(-2, 2, -2, 2, 0), plateDown, squareZ(-1, 1, -1, 1, 1e-4)};
+    RayCaster thinRc;
+    thinRc.setFrame(Aabb{glm::dvec3(-2, -2, 0), glm::dvec3(2, 2, 3)});
+    thinRc.setLayer(Layer::Static, thin, allIds(thin));
+    EXPECT_TRUE(occluded(thinRc, Layer::Static, glm::dvec3(0.1, 0.2, 0), glm::dvec3(0.3, 0.1, 3), 0, kNo));
+    // The plate's underside sees the floor under it, its top the space above.
+    EXPECT_FALSE(occluded(thinRc, Layer::Static, glm::dvec3(0.1, 0.2, 1e-4), glm::dvec3(0.3, 0.1, 0), 1, 0));
+    EXPECT_FALSE(occluded(thinRc, Layer::Static, glm::dvec3(0.1, 0.2, 1e-4), glm::dvec3(0.3, 0.1, 3), 2, kNo));
+}
+
+// A zero-thickness slab: two coincident faces back to back. Each is seen from
+// its own side; nothing passes through.
+TEST(RayCaster, ZeroThicknessSlabShowsEachFaceFromItsSide) {
+    Scene scene;
+    Polygon bottom = squareZ(-1, 1, -1, 1, 1);
+    std::swap(bottom.vertices[1], bottom.vertices[3]);
+    scene.polygons = {squareZ(-1, 1, -1, 1, 1), bottom};  // 0 faces +z, 1 faces -z
+    RayCaster rc;
+    rc.setFrame(Aabb{glm::dvec3(-2, -2, 0), glm::dvec3(2, 2, 2)});
+    rc.setLayer(Layer::Static, scene, allIds(scene));
+    const glm::dvec3 on(0.2, 0.3, 1), above(0.5, 0.1, 2), below(-0.4, 0.2, 0);
+    EXPECT_FALSE(occluded(rc, Layer::Static, above, on, kNo, 0));
+    EXPECT_FALSE(occluded(rc, Layer::Static, below, on, kNo, 1));
+    EXPECT_FALSE(occluded(rc, Layer::Static, on, above, 0, kNo));
+    EXPECT_FALSE(occluded(rc, Layer::Static, on, below, 1, kNo));
+    EXPECT_TRUE(occluded(rc, Layer::Static, above, below));
+    EXPECT_TRUE(occluded(rc, Layer::Static, below, above));
 }
 
 TEST(RayCaster, SegmentEndsOnAPolygonAreNotBlockedByIt) {
@@ -204,7 +274,7 @@ TEST(RayCaster, MillimetreAndKilometreScalesBehaveTheSame) {
         noBlocker.polygons.pop_back();
         RayCaster walls;
         walls.setLayer(Layer::Static, noBlocker, allIds(noBlocker));
-        EXPECT_DOUBLE_EQ(walls.unoccludedFraction(Layer::Static, from, to), 1.0);
+        EXPECT_EQ(blockedCount(walls, Layer::Static, from, to), 0u);
         // Picking at scale.
         auto hit = rc.intersect(room.at(0.5, 0.5, 2), room.dir(0, 0, -1), 10 * scale);
         ASSERT_TRUE(hit.has_value());
@@ -239,9 +309,9 @@ TEST(RayCaster, ConcurrentQueriesAgreeWithSerialOnes) {
         });
     for (std::thread& th : threads) th.join();
     EXPECT_EQ(serial, parallel);
-    const double f = rc.unoccludedFraction(Layer::Static, from, to);
-    EXPECT_GT(f, 0.0);
-    EXPECT_LT(f, 1.0);
+    const std::size_t blocked = blockedCount(rc, Layer::Static, from, to);
+    EXPECT_GT(blocked, 0u);
+    EXPECT_LT(blocked, from.size());
 }
 
 }  // namespace

@@ -275,7 +275,7 @@ TEST(ViewerTest, EngineThreadMovesAnObjectNotMarkedDynamic) {
 TEST(ViewerTest, HelpShowsTheDefaults) {
     const ProcessResult r = run("timeout 20 " + shellQuote(kViewer) + " --help");
     EXPECT_EQ(r.exitCode, 0);
-    for (const char* shown : {"--size WxH=1200x760", "--target-fps F=30", "--epsilon E=0.0002", "--exposure EV=0"})
+    for (const char* shown : {"--size WxH=1200x760", "--target-fps F=30", "--epsilon E=5e-05", "--exposure EV=0"})
         EXPECT_NE(r.output.find(shown), std::string::npos) << shown << "\n" << r.output;
 }
 

@@ -19,6 +19,10 @@ struct SceneError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Luminance of linear RGB (Rec. 709): the scalar of power balances, error
+// estimates and refinement decisions.
+inline double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
 struct Material {
     std::string name;
     glm::dvec3 reflectance{0.0};  // rho, each channel in [0,1)

@@ -16,7 +16,7 @@ struct SolveSettings {
 };
 
 struct EngineSettings {
-    double epsilon = 2e-4;  // BF threshold, relative to the total emitted power
+    double epsilon = 5e-5;  // BF threshold, relative to the total emitted power
     // Area threshold A_e in square metres; 0 picks 2e-5 of the scene's total
     // polygon area, so that the default suits any scene scale.
     double minArea = 0.0;

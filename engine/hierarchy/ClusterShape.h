@@ -1,0 +1,76 @@
+#pragma once
+// The orientation of a cluster (Sillion 1995; Sillion, Drettakis, Soler 1995):
+// what a cluster looks like from a direction. A cluster is not an isotropic
+// blob: a wall cluster seen edge-on shows nothing, seen face-on all of its
+// area, and only the front sides of its surfaces emit and receive.
+//
+// The shape is built once from the member surfaces (and again when they
+// move), bottom-up from the children's shapes:
+//   - facets: the member surfaces grouped by normal, with their areas. The
+//     projected area toward a direction is sum_k A_k max(0, n_k . dir), and
+//     the radiosity the cluster sends that way is the facets' B A weighted
+//     the same way. Surfaces of equal normal share a facet exactly; beyond
+//     kMaxFacets normals, the closest are merged (area-weighted normal), which
+//     keeps every facet's emitted power and approximates only its direction;
+//   - visibility sample points on the member surfaces' front sides, spread by
+//     area; a link uses those whose surfaces face its other end.
+// The facets' powers (sum of B A) are the solution state the push-pull
+// refreshes; `gathered` is what the receivers of the cluster's links hold
+// (the in-place gather of eq. 1, 2 works on it as on a surface's B).
+
+#include <array>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <span>
+#include <vector>
+
+namespace rad {
+
+struct ClusterShape {
+    static constexpr int kMaxFacets = 12;
+    static constexpr int kSamples = 16;
+
+    struct Facet {
+        glm::dvec3 normal{0.0};
+        double area = 0.0;
+    };
+    struct Sample {
+        glm::dvec3 p{0.0};
+        glm::dvec3 normal{0.0};
+        double weight = 0.0;  // the area it stands for
+        std::uint32_t polygon = 0;
+    };
+    using Powers = std::array<glm::dvec3, kMaxFacets>;
+
+    std::array<Facet, kMaxFacets> facets{};
+    int facetCount = 0;
+    std::array<Sample, kSamples> samples{};
+    int sampleCount = 0;
+    // For each child in order, and each facet of that child (one for a
+    // surface), the facet of this cluster it belongs to.
+    std::vector<std::uint8_t> childFacet;
+
+    Powers power{};     // per facet: sum of B A over its members
+    Powers gathered{};  // the power the receivers of its links hold
+
+    // sum_k A_k max(0, n_k . dir), dir a unit vector.
+    double projectedArea(const glm::dvec3& dir) const;
+    // The radiosity the cluster sends toward dir (unit): the facets' powers
+    // weighted by their projected areas, over the projected area; zero when
+    // no facet faces dir.
+    glm::dvec3 radiosityToward(const glm::dvec3& dir, const Powers& powers) const;
+    // The largest radiosity luminance of a facet (a bound on what it sends).
+    double peakLuminance(const Powers& powers) const;
+};
+
+// What a child contributes to a shape: its facets and its sample points.
+struct ShapePart {
+    std::span<const ClusterShape::Facet> facets;
+    std::span<const ClusterShape::Sample> samples;
+};
+
+// Builds a cluster's facets, mapping and sample points from its children's
+// parts (powers are left to the caller: they are solution state).
+void buildShape(std::span<const ShapePart> children, ClusterShape& shape);
+
+}  // namespace rad
