@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <stdexcept>
 #include <sstream>
@@ -12,6 +13,8 @@
 #include "links/Link.h"
 #include "refine/Refiner.h"
 #include "snapshot/Sampling.h"
+#include "solve/Diagnosis.h"
+#include "solve/EnergyAudit.h"
 #include "solve/Solver.h"
 #include "snapshot/RadiositySnapshot.h"
 #include "update/BudgetControl.h"
@@ -21,6 +24,10 @@
 
 namespace rad {
 namespace {
+
+// The energy guard is reported where it divided by more than this: below it,
+// the sums exceed one only by the point quadrature's error.
+constexpr double kGuardWarningThreshold = 0.05;
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -53,7 +60,8 @@ struct Engine::State {
           settings(settings),
           hierarchy(scene, settings.minArea > 0.0 ? settings.minArea : 2e-5 * totalArea(scene)),
           refiner(hierarchy, links, rays,
-                  RefineSettings{settings.epsilon, emittedPower(scene), settings.samplesPerElement, settings.maxLinks}),
+                  RefineSettings{settings.epsilon, emittedPower(scene), settings.samplesPerElement,
+                                 settings.maxMemoryBytes > 0 ? settings.maxMemoryBytes : defaultMemoryLimit()}),
           solver(hierarchy, links),
           updater(hierarchy, links, refiner, solver, emittedPower(scene) / totalArea(scene)) {}
 
@@ -86,11 +94,37 @@ struct Engine::State {
     SolveStats stats;
     bool solved = false;
 
+    // Refinement judges a link by its source's radiosity as last solved.
+    void setOracles() {
+        for (ElementId e = 0; e < hierarchy.size(); ++e) {
+            HElement& el = hierarchy[e];
+            // A cluster sends each way what its facets facing that way send:
+            // judged by the brightest, so that a lamp in a dark cluster counts.
+            el.oracle = el.shape != kNone ? hierarchy.shape(e).peakLuminance(hierarchy.shape(e).power)
+                                          : luminance(el.radiosity);
+        }
+    }
+
+    // Where each polygon's light goes, by rays (solve/EnergyAudit.h); traced
+    // again after the geometry moved.
+    mutable std::optional<LightDestinations> destinations;
+    mutable bool destinationsStale = true;
+
     std::optional<std::uint32_t> dynamic;
     std::vector<std::uint32_t> dynamicPolygonIds;
     std::vector<Polygon> original;  // the dynamic object's polygons as chosen
     glm::dmat4 originalWorld{1.0};
 };
+
+std::size_t defaultMemoryLimit() {
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    std::size_t kib = 0;
+    std::string unit;
+    while (meminfo >> key >> kib >> unit)
+        if (key == "MemAvailable:") return kib * 1024 / 2;
+    return std::size_t(4) << 30;
+}
 
 Engine::Engine(Scene scene, const EngineSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
@@ -104,6 +138,7 @@ Engine::Engine(Scene scene, const EngineSettings& settings) {
             break;
         }
     s.rays.setFrame(s.scene.bounds());
+    s.solver.setEnergyGuard(settings.energyGuard);
     s.chooseDynamic(dynamicObject);
     s.stats.polygons = s.scene.polygons.size();
     s.stats.minArea = s.hierarchy.minArea();
@@ -118,37 +153,24 @@ const SolveStats& Engine::solve(const Progress& progress) {
     s.refiner.linkRoot();
     // Radiosity starts at emission, so the first refinement sees the lights.
     s.solver.pushPull();
+    SolveResult r;
     for (int round = 1; round <= s.settings.maxRefineRounds; ++round) {
         auto t = std::chrono::steady_clock::now();
-        for (ElementId e = 0; e < s.hierarchy.size(); ++e) {
-            HElement& el = s.hierarchy[e];
-            // A cluster sends each way what its facets facing that way send:
-            // judged by the brightest, so that a lamp in a dark cluster counts.
-            el.oracle = el.shape != kNone ? s.hierarchy.shape(e).peakLuminance(s.hierarchy.shape(e).power)
-                                          : luminance(el.radiosity);
-        }
+        s.setOracles();
         const std::size_t refined = s.refiner.refineAll();
         st.refineSeconds += secondsSince(t);
         st.refineRounds = round;
         t = std::chrono::steady_clock::now();
-        const SolveResult r = s.solver.solve(s.settings.solve);
+        r = s.solver.solve(s.settings.solve);
         st.solveSeconds += secondsSince(t);
         st.iterations += r.iterations;
-        st.converged = r.converged;
         if (progress) {
             std::ostringstream line;
             line << "round " << round << ": refined " << refined << " links, " << s.links.liveCount()
                  << " links in all, " << r.iterations << " sweeps, change " << r.lastChange;
             progress(line.str());
         }
-        if (!r.converged) {
-            std::ostringstream m;
-            m << "did not converge: after " << r.iterations << " sweeps the estimated remaining error is "
-              << r.estimatedError << " (tolerance " << s.settings.solve.tolerance
-              << "); reflectance near 1 needs more sweeps (raise the iteration limit)";
-            st.message = m.str();
-            break;
-        }
+        if (r.status != SolveResult::Status::Converged) break;
         // A round that refines almost nothing changes the radiosity too little
         // for another round to find more worth refining.
         if (refined == 0 || refined * 1000 < s.links.liveCount()) break;
@@ -156,17 +178,31 @@ const SolveStats& Engine::solve(const Progress& progress) {
     }
     // Refinement made under an earlier round's radiosity that the final one
     // no longer asks for goes, and the system is solved once more.
-    if (st.converged && s.updater.reinstateUnneeded() > 0) {
+    if (r.status == SolveResult::Status::Converged && s.updater.reinstateUnneeded() > 0) {
         const auto t = std::chrono::steady_clock::now();
-        const SolveResult r = s.solver.solve(s.settings.solve);
+        r = s.solver.solve(s.settings.solve);
         st.solveSeconds += secondsSince(t);
         st.iterations += r.iterations;
-        st.converged = r.converged;
+    }
+    st.converged = r.status == SolveResult::Status::Converged;
+    if (!st.converged) {
+        st.message = diagnoseFailure(s.scene, s.hierarchy, s.solver, r, s.settings.solve);
+        // Nothing non-finite leaves the engine: the values that ran away are
+        // cleared, and the solve says why.
+        clearNonFinite(s.hierarchy);
     }
     if (s.refiner.capReached()) {
-        const std::string cap = "refinement stopped at the memory cap of " + std::to_string(s.settings.maxLinks) + " links";
-        st.message = st.message.empty() ? cap : st.message + "; " + cap;
+        st.converged = false;
+        st.stoppedBy = "memory_limit";
+        st.unrefinedPowerShare = s.refiner.unrefinedPower() / std::max(1e-300, s.refiner.settings().referencePower);
+        std::ostringstream m;
+        m << "refinement stopped at the memory limit of " << (s.refiner.settings().maxMemoryBytes >> 20)
+          << " MiB; links coarser than the criterion asks carry " << 100.0 * st.unrefinedPowerShare
+          << "% of the emitted power (raise the limit with --max-memory, or raise epsilon)";
+        st.message = st.message.empty() ? m.str() : st.message + "; " + m.str();
+        st.warnings.push_back({"memory_limit", m.str(), {}, st.unrefinedPowerShare});
     }
+    for (Warning& w : guardWarnings(s.scene, s.solver, kGuardWarningThreshold)) st.warnings.push_back(std::move(w));
     st.elements = s.hierarchy.liveCount();
     st.links = st.passiveLinks = 0;
     for (ElementId e = 0; e < s.hierarchy.size(); ++e) {
@@ -175,8 +211,8 @@ const SolveStats& Engine::solve(const Progress& progress) {
     }
     s.hierarchy.compact();
     s.links.compact();
-    st.memory = {s.hierarchy.memoryBytes(), s.links.memoryBytes()};
-    st.energy = s.solver.energy();
+    st.memory = {s.hierarchy.memoryBytes() + s.solver.memoryBytes(), s.links.memoryBytes()};
+    st.energy = energy();
     // The full sweeps left every receiver's irradiance consistent with the
     // sources' gathered B: the in-place updates start from here.
     s.refiner.takeDirty();
@@ -238,6 +274,7 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
     s.hierarchy.updateGeometry(cluster);
     s.hierarchy.refreshAncestors(cluster);
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
+    s.destinationsStale = true;
     s.updater.setObstacles(motionObstacles(s.scene, *s.dynamic, before, oldToNew));
     const double moveSeconds = secondsSince(start);
     FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
@@ -265,7 +302,16 @@ std::size_t Engine::linksCarrying(std::uint32_t from, const glm::dvec2& uvFrom, 
     return count;
 }
 
-EnergyBalance Engine::energy() const { return state_->solver.energy(); }
+EnergyBalance Engine::energy() const {
+    const State& s = *state_;
+    EnergyBalance e = s.solver.energy();
+    if (!s.destinations || s.destinationsStale) {
+        s.destinations = traceDestinations(s.scene, s.rays);
+        s.destinationsStale = false;
+    }
+    auditEnergy(s.hierarchy, *s.destinations, e);
+    return e;
+}
 MemoryStats Engine::memory() const { return {state_->hierarchy.memoryBytes(), state_->links.memoryBytes()}; }
 std::size_t Engine::linkCount() const { return state_->links.liveCount(); }
 

@@ -403,6 +403,18 @@ void Refiner::refine(const std::vector<LinkId>& ids, std::vector<LinkId>& create
     for (LinkId id : ids) deactivate(id);
 }
 
+double Refiner::unrefinedPower() const {
+    double power = 0.0;
+    for (ElementId e = 0; e < h_.size(); ++e)
+        for (LinkId id : h_[e].links)
+            if (wouldRefine(links_[id])) power += potentialTransfer(links_[id]);
+    return power;
+}
+
+std::size_t Refiner::memoryInUse() const {
+    return links_.liveCount() * (sizeof(Link) + 3 * sizeof(LinkId)) + h_.liveCount() * sizeof(HElement);
+}
+
 std::size_t Refiner::refineAll() {
     std::vector<LinkId> wave;
     for (ElementId e = 0; e < h_.size(); ++e)
@@ -417,7 +429,9 @@ std::size_t Refiner::refineAll(std::vector<LinkId> wave) {
         for (LinkId id : wave)
             if (wouldRefine(links_[id])) batch.push_back(id);
         if (batch.empty()) break;
-        if (links_.liveCount() + 4 * batch.size() > settings_.maxLinks) {
+        // Each refinement makes a few links and, for a surface, four elements.
+        const std::size_t growth = batch.size() * (4 * (sizeof(Link) + 3 * sizeof(LinkId)) + 4 * sizeof(HElement));
+        if (memoryInUse() + growth > settings_.maxMemoryBytes) {
             capReached_ = true;
             break;
         }

@@ -24,7 +24,8 @@ struct RefineSettings {
     // Visibility sample points per surface element: 4 (a 2 x 2 Gauss grid)
     // or 1 (its centre). A link casts the product of its two ends' counts.
     int samplesPerElement = 4;
-    std::size_t maxLinks = 4'000'000;  // memory cap on live links and p-links
+    // Refinement stops before links and elements would take more bytes.
+    std::size_t maxMemoryBytes = std::size_t(4) << 30;
 };
 
 class Refiner {
@@ -92,6 +93,12 @@ public:
     void refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created, bool deferRays = false);
 
     bool capReached() const { return capReached_; }
+    // The power the active links that the criterion would still refine could
+    // carry (potentialTransfer): what a stopped refinement left coarse.
+    double unrefinedPower() const;
+    // What links and elements take now, as refinement counts it: the
+    // containers' sizes, not their capacities.
+    std::size_t memoryInUse() const;
     const RefineSettings& settings() const { return settings_; }
     void setSettings(const RefineSettings& s) { settings_ = s; }
 

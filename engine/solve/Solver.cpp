@@ -165,19 +165,62 @@ std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dir
     return visited;
 }
 
+bool Solver::finiteAndBounded() const {
+    // With the guard, no leaf receives more than the brightest leaf sends, so
+    // in each channel B <= E_max + rho_max B_max: B_max <= E_max / (1 - rho_max).
+    // The polygons' means stay under it too.
+    glm::dvec3 emission(0.0), rho(0.0);
+    for (std::uint32_t p = 0; p < h_.polygonCount(); ++p) {
+        const ElementId e = h_.polygonElement(p);
+        if (e == kNone) continue;
+        emission = glm::max(emission, h_[e].emission);
+        rho = glm::max(rho, h_[e].reflectance);
+    }
+    for (std::uint32_t p = 0; p < h_.polygonCount(); ++p) {
+        const ElementId e = h_.polygonElement(p);
+        if (e == kNone) continue;
+        const glm::dvec3& b = h_[e].radiosity;
+        for (int c = 0; c < 3; ++c) {
+            if (!std::isfinite(b[c])) return false;
+            if (guard_ && rho[c] < 1.0 && b[c] > emission[c] / (1.0 - rho[c]) * (1.0 + 1e-6) + 1e-300)
+                return false;
+        }
+    }
+    return true;
+}
+
 SolveResult Solver::solve(const SolveSettings& settings,
                           const std::function<void(int, double)>& progress) {
+    using Status = SolveResult::Status;
     SolveResult result;
     double previous = 0.0;
+    int growing = 0;  // consecutive sweeps whose change grew
     for (int it = 1; it <= settings.maxIterations; ++it) {
         gatherAll();
         const double delta = pushPull();
         result.iterations = it;
         result.lastChange = delta;
         if (progress) progress(it, delta);
+        if (!std::isfinite(delta)) {
+            result.status = Status::NonFinite;
+            return result;
+        }
+        if (!finiteAndBounded()) {
+            // Rounding aside, radiosity above the bound is light made from nothing.
+            result.status = Status::Diverged;
+            return result;
+        }
         if (delta == 0.0) {
+            result.status = Status::Converged;
             result.converged = true;
             result.estimatedError = 0.0;
+            return result;
+        }
+        growing = previous > 0.0 && delta > previous ? growing + 1 : 0;
+        // The first sweeps after a refinement may rise; a change that grows
+        // for this long is an iteration that amplifies.
+        if (growing >= kGrowingSweeps) {
+            result.status = Status::Diverged;
             return result;
         }
         if (it >= 2 && previous > 0.0) {
@@ -185,6 +228,7 @@ SolveResult Solver::solve(const SolveSettings& settings,
             if (r < 1.0) {
                 result.estimatedError = delta * r / (1.0 - r);
                 if (result.estimatedError < settings.tolerance) {
+                    result.status = Status::Converged;
                     result.converged = true;
                     return result;
                 }
@@ -194,6 +238,7 @@ SolveResult Solver::solve(const SolveSettings& settings,
         }
         previous = delta;
     }
+    result.status = Status::IterationLimit;
     return result;
 }
 
@@ -229,7 +274,6 @@ EnergyBalance Solver::energy() const {
         balance.absorbed += e.area * luminance((glm::dvec3(1.0) - e.reflectance) * arriving);
         balance.reflected += e.area * luminance(e.reflectance * arriving);
     });
-    balance.escaped = balance.emitted - balance.absorbed;
     return balance;
 }
 

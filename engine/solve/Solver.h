@@ -22,6 +22,13 @@
 namespace rad {
 
 struct SolveResult {
+    enum class Status {
+        Converged,
+        IterationLimit,  // still changing after maxIterations sweeps
+        Diverged,        // the residual kept growing, or more power than can be
+        NonFinite,       // a radiosity became NaN or infinite
+    };
+    Status status = Status::IterationLimit;
     int iterations = 0;
     bool converged = false;
     double lastChange = 0.0;      // relative change in the last sweep
@@ -51,9 +58,15 @@ class Solver {
     // subtrees below them are visited; elsewhere the stored B stands. Clears
     // the marks. Returns the elements visited.
     std::vector<ElementId> partialPushPull(const std::vector<ElementId>& dirty);
-    // Iterates gather and push-pull until converged or maxIterations.
+    // Iterates gather and push-pull until converged or maxIterations. Every
+    // sweep checks that the radiosity is finite and not running away: no
+    // radiosity can exceed the largest emission over (1 - the largest
+    // reflectance), and a residual that grows sweep after sweep never
+    // converges.
     SolveResult solve(const SolveSettings& settings,
                       const std::function<void(int, double)>& progress = {});
+    // The energy guard (on by default; off only to show what it prevents).
+    void setEnergyGuard(bool on) { guard_ = on; }
 
     EnergyBalance energy() const;
     // The objects where the energy guard divided by more than 1 + threshold.
@@ -84,6 +97,8 @@ class Solver {
     glm::dvec3 push(ElementId id, const Down& down, bool forced, int depth, Walk& walk);
     // Cluster levels (from the root) whose children are pushed in parallel.
     static constexpr int kParallelDepth = 8;
+    // Sweeps in a row whose change grows before the solve calls it diverging.
+    static constexpr int kGrowingSweeps = 20;
     // What arrives at a surface element from above (its ancestors' links).
     Down surfaceDown(const HElement& e, const Down& down, const Walk& walk) const;
     // The push of a surface element's irradiance to its children. What
@@ -101,15 +116,19 @@ class Solver {
     // tables are distinct, so disjoint subtrees may build theirs at once.
     const ArrivalTable& arrivalTable(ElementId cluster) const;
 
+    // The leaves' irradiance after the energy guard.
+    glm::dvec3 guarded(const glm::dvec3& irradiance, double formFactorSum) const {
+        return guard_ && formFactorSum > 1.0 ? irradiance / formFactorSum : irradiance;
+    }
+    // Whether every polygon's radiosity is finite and, with the guard, under
+    // the bound no solution can exceed (E_max / (1 - rho_max) per channel).
+    bool finiteAndBounded() const;
+
     Hierarchy& h_;
     LinkStore& links_;
+    bool guard_ = true;
     mutable std::vector<ArrivalTable> tables_;  // by cluster shape slot
 };
 
-// The irradiance a leaf reflects: the arriving irradiance, divided by the
-// form-factor sum where it exceeds one (the energy guard).
-inline glm::dvec3 guarded(const glm::dvec3& irradiance, double formFactorSum) {
-    return formFactorSum > 1.0 ? irradiance / formFactorSum : irradiance;
-}
 
 }  // namespace rad

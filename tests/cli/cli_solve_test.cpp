@@ -67,7 +67,10 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
                  received = energy["received"], escaped = energy["escaped"];
     EXPECT_GT(emitted, 0.0);
     EXPECT_NEAR(reflected + absorbed, received, 1e-9 * received);
-    EXPECT_NEAR(absorbed + escaped, emitted, 1e-9 * emitted);
+    // Escaped light is measured by rays; what the links deliver and what
+    // leaves never add to more than was emitted (energy.lost is the rest).
+    EXPECT_LE(absorbed + escaped, emitted * (1.0 + 1e-3));
+    EXPECT_GT(absorbed + escaped, 0.95 * emitted);
     EXPECT_GT(escaped, 0.0);  // the box is open at the front: some light leaves
     // One entry per object of the box, each with its area and mean RGB radiosity.
     const nlohmann::json& objects = json.at("objects");

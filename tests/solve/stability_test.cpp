@@ -56,20 +56,23 @@ TEST(Stability, EpsilonExtremes) {
     ASSERT_TRUE(reference.solve().converged);
     EXPECT_LT(rough.linkCount(), reference.linkCount());
 
-    // Far too fine: the memory cap stops the refinement.
+    // Far too fine: the memory limit stops the refinement, and the solve says
+    // it did not converge.
     EngineSettings fine;
     fine.epsilon = 1e-9;
-    fine.maxLinks = 200'000;
+    fine.maxMemoryBytes = 32u << 20;
     Engine capped(cornellBox(), fine);
     const auto t = Clock::now();
     const SolveStats& c = capped.solve();
-    std::printf("  epsilon 1e-9, cap %zu: converged %d, %zu links (%zu active, %zu passive), %zu elements, "
-                "%d rounds, %.2f s, message '%s'\n",
-                fine.maxLinks, c.converged, capped.linkCount(), c.links, c.passiveLinks, c.elements, c.refineRounds,
-                secondsSince(t), c.message.c_str());
-    EXPECT_NE(c.message.find("cap"), std::string::npos) << c.message;
-    // The cap is checked before each refinement batch (4 links per refined link).
-    EXPECT_LE(capped.linkCount(), fine.maxLinks + fine.maxLinks / 10);
+    std::printf("  epsilon 1e-9, limit %zu MiB: converged %d, %zu links (%zu active, %zu passive), %zu elements, "
+                "%d rounds, %.2f s, %zu MiB, message '%s'\n",
+                fine.maxMemoryBytes >> 20, c.converged, capped.linkCount(), c.links, c.passiveLinks, c.elements,
+                c.refineRounds, secondsSince(t), capped.memory().total() >> 20, c.message.c_str());
+    EXPECT_EQ(c.stoppedBy, "memory_limit");
+    EXPECT_FALSE(c.converged);
+    // The limit is checked before each refinement batch, on what the
+    // containers hold (their capacities add some slack).
+    EXPECT_LE(capped.memory().total(), 2 * fine.maxMemoryBytes);
     EXPECT_TRUE(allFinite(capped.samples()));
     EXPECT_TRUE(finiteEnergy(capped.energy()));
     const SolutionError e = compareSamples(capped.samples(), reference.samples());

@@ -22,11 +22,23 @@ struct EngineSettings {
     double minArea = 0.0;
     SolveSettings solve;
     int maxRefineRounds = 16;  // refine / solve rounds before giving up
-    std::size_t maxLinks = 4'000'000;
+    // Refinement stops before links and elements take more than this many
+    // bytes (the solve then says so: SolveStats::stoppedBy). 0: half of the
+    // memory the machine has available when the engine starts
+    // (defaultMemoryLimit()).
+    std::size_t maxMemoryBytes = 0;
     // Visibility sample points per element; a link casts the product of its
     // two ends' counts (16 x 16 at most).
     int samplesPerElement = 4;
+    // The energy guard: a point whose form factors sum above one reflects no
+    // more than a closed enclosure would send it (solve/Solver.h). Off only
+    // to show what it prevents.
+    bool energyGuard = true;
 };
+
+// Half of the memory available on this machine (Linux: MemAvailable in
+// /proc/meminfo), or 4 GiB when that cannot be read.
+std::size_t defaultMemoryLimit();
 
 inline constexpr std::size_t kUnlimited = static_cast<std::size_t>(-1);
 

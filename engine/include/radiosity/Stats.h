@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -10,13 +11,33 @@
 
 namespace rad {
 
-// Power balance over the leaves (luminance, in scene units of power).
+// Power balance (luminance, in scene units of power). Where the light that
+// leaves the surfaces goes is measured twice: by the links (what the
+// surfaces receive) and by rays cast from every polygon (what leaves the
+// scene through openings, or ends on the back of a one-sided polygon, which
+// absorbs it). What neither accounts for is the solution's own error.
 struct EnergyBalance {
     double emitted = 0.0;    // sum E A
-    double received = 0.0;   // sum H A, H the irradiance arriving
+    double received = 0.0;   // sum H A, H the irradiance arriving at front sides
     double absorbed = 0.0;   // sum (1 - rho) H A
     double reflected = 0.0;  // sum rho H A
-    double escaped = 0.0;    // emitted - absorbed: leaves the scene (open scenes) or error
+    // Measured by rays: the light leaving the surfaces (sum B A) that
+    // meets nothing, and that meets the back of a polygon.
+    double escaped = 0.0;
+    double backFaces = 0.0;
+    // emitted - absorbed - escaped - backFaces: light the solution lost
+    // (positive) or made (negative), and max(0, absorbed - emitted).
+    double lost = 0.0;
+    double created = 0.0;
+};
+
+// Something the user should know about a solve: one line, the objects it is
+// about and a figure (what the figure is depends on the kind).
+struct Warning {
+    std::string kind;     // "energy_guard", "memory_limit", "duplicates", ...
+    std::string message;  // one line
+    std::vector<std::string> objects;
+    double amount = 0.0;
 };
 
 struct MemoryStats {
@@ -34,6 +55,12 @@ struct SolveStats {
     int refineRounds = 0;
     bool converged = false;
     std::string message;            // why it did not converge, or notes
+    // What stopped refinement before the criterion held everywhere (empty:
+    // nothing), and the share of the emitted power that the links left
+    // coarser than the criterion asks carry.
+    std::string stoppedBy;
+    double unrefinedPowerShare = 0.0;
+    std::vector<Warning> warnings;
     double hierarchySeconds = 0.0;
     double refineSeconds = 0.0;
     double solveSeconds = 0.0;

@@ -1,0 +1,135 @@
+#include "solve/Diagnosis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace rad {
+namespace {
+
+bool finite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+std::string quoted(const std::vector<std::string>& names) {
+    std::string out;
+    for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", '" : "'") + names[i] + "'";
+    return out;
+}
+
+// The objects with the highest radiosity (non-finite first), at most three.
+std::vector<std::string> runaways(const Scene& scene, const Hierarchy& h) {
+    std::vector<std::pair<double, std::string>> ranked;
+    for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
+        const ElementId c = h.objectCluster(o);
+        if (c == kNone) continue;
+        const glm::dvec3& b = h[c].radiosity;
+        ranked.emplace_back(finite(b) ? luminance(b) : INFINITY, scene.objects[o].name);
+    }
+    std::sort(ranked.begin(), ranked.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < ranked.size() && i < 3; ++i) names.push_back(ranked[i].second);
+    return names;
+}
+
+// The material with the highest reflectance and the objects using it.
+std::string reflectanceCause(const Scene& scene) {
+    double rho = 0.0;
+    std::string object;
+    for (const Polygon& p : scene.polygons) {
+        const glm::dvec3& r = scene.materials[p.material].reflectance;
+        const double m = std::max({r.x, r.y, r.z});
+        if (m > rho) {
+            rho = m;
+            object = scene.objects[p.object].name;
+        }
+    }
+    std::ostringstream out;
+    if (rho >= 1.0)
+        out << "reflectance " << rho << " in '" << object
+            << "' absorbs nothing, so light is never used up";
+    else if (rho >= 0.95)
+        out << "reflectance " << rho << " in '" << object << "' is near 1: light takes about "
+            << std::lround(std::log(1e-4) / std::log(rho)) << " bounces to die out";
+    return out.str();
+}
+
+}  // namespace
+
+std::string diagnoseFailure(const Scene& scene, const Hierarchy& h, const Solver& solver,
+                            const SolveResult& r, const SolveSettings& settings) {
+    using Status = SolveResult::Status;
+    std::ostringstream m;
+    const std::vector<std::string> names = runaways(scene, h);
+    switch (r.status) {
+        case Status::NonFinite:
+            m << "the solution became non-finite (NaN or infinite) after " << r.iterations
+              << " sweeps in " << quoted(names);
+            break;
+        case Status::Diverged:
+            m << "the solution diverged after " << r.iterations << " sweeps: the radiosity of "
+              << quoted(names) << " grows without bound";
+            break;
+        case Status::IterationLimit:
+            m << "did not converge: after " << r.iterations
+              << " sweeps the estimated remaining error is " << r.estimatedError << " (tolerance "
+              << settings.tolerance << ")";
+            break;
+        case Status::Converged:
+            return {};
+    }
+    // The likely cause: form factors summing above 1 (where the guard would
+    // have acted), or a reflectance that leaves light too long.
+    const std::vector<GuardAction> excess = solver.guardActions(0.01);
+    std::string cause;
+    if (!excess.empty() && r.status != Status::IterationLimit) {
+        const GuardAction worst = *std::max_element(
+            excess.begin(), excess.end(),
+            [](const GuardAction& a, const GuardAction& b) { return a.largestSum < b.largestSum; });
+        std::ostringstream c;
+        c << "form factors sum to " << worst.largestSum << " (above 1) at '"
+          << scene.objects[worst.object].name << "': it receives more light than any point can see";
+        cause = c.str();
+    }
+    if (cause.empty()) cause = reflectanceCause(scene);
+    if (!cause.empty()) m << "; likely cause: " << cause;
+    if (r.status == Status::IterationLimit) m << "; raise the iteration limit (--max-iterations)";
+    return m.str();
+}
+
+std::vector<Warning> guardWarnings(const Scene& scene, const Solver& solver, double threshold) {
+    std::vector<Warning> out;
+    for (const GuardAction& a : solver.guardActions(threshold)) {
+        const std::string& name = scene.objects[a.object].name;
+        std::ostringstream m;
+        m << "form factors at '" << name << "' sum to up to " << a.largestSum
+          << ": the energy guard scaled down the light arriving at " << a.area << " m^2 of it";
+        out.push_back({"energy_guard", m.str(), {name}, a.largestSum});
+    }
+    return out;
+}
+
+std::size_t clearNonFinite(Hierarchy& h) {
+    std::size_t cleared = 0;
+    const auto clear = [&](glm::dvec3& v) {
+        if (finite(v)) return;
+        v = glm::dvec3(0.0);
+        ++cleared;
+    };
+    for (ElementId e = 0; e < h.size(); ++e) {
+        HElement& el = h[e];
+        clear(el.radiosity);
+        clear(el.irradiance);
+        clear(el.gathered);
+        if (el.shape == kNone) continue;
+        ClusterShape& shape = h.shape(e);
+        for (int k = 0; k < shape.facetCount; ++k) {
+            clear(shape.power[k]);
+            clear(shape.gathered[k]);
+        }
+    }
+    return cleared;
+}
+
+}  // namespace rad

@@ -1,0 +1,28 @@
+#pragma once
+// What to tell the user when a solve goes wrong, or when a safeguard had to
+// act: the objects concerned and the most likely cause, in one line.
+
+#include <string>
+#include <vector>
+
+#include "hierarchy/Hierarchy.h"
+#include "radiosity/Scene.h"
+#include "radiosity/Stats.h"
+#include "solve/Solver.h"
+
+namespace rad {
+
+// One line for a solve that stopped without converging: what happened, the
+// objects whose radiosity ran away (or the brightest), and the likely cause.
+std::string diagnoseFailure(const Scene& scene, const Hierarchy& hierarchy, const Solver& solver,
+                            const SolveResult& result, const SolveSettings& settings);
+
+// Warnings for the objects where the energy guard scaled the light down by
+// more than `threshold` (form factors summing above 1 + threshold).
+std::vector<Warning> guardWarnings(const Scene& scene, const Solver& solver, double threshold);
+
+// Sets every non-finite radiosity and irradiance to zero, so that no NaN
+// reaches a report, an image or an export. Returns how many were.
+std::size_t clearNonFinite(Hierarchy& hierarchy);
+
+}  // namespace rad
