@@ -105,11 +105,6 @@ struct Engine::State {
         }
     }
 
-    // Where each polygon's light goes, by rays (solve/EnergyAudit.h); traced
-    // again after the geometry moved.
-    mutable std::optional<LightDestinations> destinations;
-    mutable bool destinationsStale = true;
-
     std::optional<std::uint32_t> dynamic;
     std::vector<std::uint32_t> dynamicPolygonIds;
     std::vector<Polygon> original;  // the dynamic object's polygons as chosen
@@ -274,7 +269,6 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
     s.hierarchy.updateGeometry(cluster);
     s.hierarchy.refreshAncestors(cluster);
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
-    s.destinationsStale = true;
     s.updater.setObstacles(motionObstacles(s.scene, *s.dynamic, before, oldToNew));
     const double moveSeconds = secondsSince(start);
     FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
@@ -305,11 +299,7 @@ std::size_t Engine::linksCarrying(std::uint32_t from, const glm::dvec2& uvFrom, 
 EnergyBalance Engine::energy() const {
     const State& s = *state_;
     EnergyBalance e = s.solver.energy();
-    if (!s.destinations || s.destinationsStale) {
-        s.destinations = traceDestinations(s.scene, s.rays);
-        s.destinationsStale = false;
-    }
-    auditEnergy(s.hierarchy, *s.destinations, e);
+    auditEnergy(s.scene, s.hierarchy, s.rays, e);
     return e;
 }
 MemoryStats Engine::memory() const { return {state_->hierarchy.memoryBytes(), state_->links.memoryBytes()}; }

@@ -82,6 +82,25 @@ bool coincidentInFront(const glm::dvec4& plane, const glm::dvec3& p, double tole
     return std::abs(glm::dot(n, p) - plane.w) <= tolerance * glm::length(n);
 }
 
+// The context of a nearest-hit query: with frontOnly, hits on the back of a
+// polygon are passed over.
+struct PickContext {
+    RTCIntersectContext base;
+    const std::vector<glm::dvec4>* planes;
+    glm::dvec3 direction;
+    bool frontOnly;
+};
+
+void filterBacks(const RTCFilterFunctionNArguments* args) {
+    const auto* ctx = reinterpret_cast<const PickContext*>(args->context);
+    if (!ctx->frontOnly) return;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const glm::dvec4& plane = (*ctx->planes)[RTCHitN_primID(args->hit, args->N, i)];
+        if (glm::dot(glm::dvec3(plane), ctx->direction) >= 0.0) args->valid[i] = 0;
+    }
+}
+
 void filterHits(const RTCFilterFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const SegmentContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
@@ -284,6 +303,7 @@ void RayCaster::setLayer(Layer layer, const Scene& scene,
         }
         std::copy(indices.begin(), indices.end(), ib);
         rtcSetGeometryOccludedFilterFunction(geometry, filterHits);
+        rtcSetGeometryIntersectFilterFunction(geometry, filterBacks);
         rtcCommitGeometry(geometry);
         rtcAttachGeometry(fresh.scene.get(), geometry);
         rtcReleaseGeometry(geometry);  // the scene holds it now
@@ -306,11 +326,14 @@ double RayCaster::coincidenceTolerance() const { return coincidenceOfSize * impl
 std::optional<RayCaster::Hit> RayCaster::intersect(const glm::dvec3& origin,
                                                    const glm::dvec3& direction, double tmax) const {
     if (!(tmax > 0.0) || direction == glm::dvec3(0.0)) return std::nullopt;
-    std::optional<Hit> best;
-    for (const Impl::LayerData& l : impl_->layers) {
-        if (!l.scene) continue;
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
+    // The nearest hit in one layer within [tnear, tfar] (world units along direction).
+    const auto nearest = [&](const Impl::LayerData& l, double tnear, double tfar,
+                             bool frontOnly) -> std::optional<Hit> {
+        PickContext context;
+        rtcInitIntersectContext(&context.base);
+        context.planes = &l.planes;
+        context.direction = direction;
+        context.frontOnly = frontOnly;
         RTCRayHit rh{};
         // Same t as in world space: origin and direction both scaled.
         const glm::vec3 org = impl_->toEmbree(origin);
@@ -321,16 +344,31 @@ std::optional<RayCaster::Hit> RayCaster::intersect(const glm::dvec3& origin,
         rh.ray.dir_x = dir.x;
         rh.ray.dir_y = dir.y;
         rh.ray.dir_z = dir.z;
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = static_cast<float>(std::min(tmax, double(std::numeric_limits<float>::max())));
+        rh.ray.tnear = static_cast<float>(tnear);
+        rh.ray.tfar = static_cast<float>(std::min(tfar, double(std::numeric_limits<float>::max())));
         rh.ray.mask = std::numeric_limits<unsigned>::max();
         rh.ray.flags = 0;
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(l.scene.get(), &context, &rh);
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-        const double t = rh.ray.tfar;
-        if (!best || t < best->t) best = Hit{l.polygonOfTri.at(rh.hit.primID), t};
+        rtcIntersect1(l.scene.get(), &context.base, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+        const bool front = glm::dot(glm::dvec3(l.planes[rh.hit.primID]), direction) < 0.0;
+        return Hit{l.polygonOfTri.at(rh.hit.primID), double(rh.ray.tfar), front};
+    };
+    std::optional<Hit> best;
+    for (const Impl::LayerData& l : impl_->layers) {
+        if (!l.scene) continue;
+        const std::optional<Hit> hit = nearest(l, 0.0, tmax, false);
+        if (hit && (!best || hit->t < best->t)) best = hit;
+    }
+    if (!best || best->front) return best;
+    // A back met first: a front coincident with it, within the tolerance,
+    // is what the ray sees.
+    const double window = 2.0 * coincidenceTolerance() / glm::length(direction);
+    for (const Impl::LayerData& l : impl_->layers) {
+        if (!l.scene) continue;
+        const std::optional<Hit> front = nearest(l, std::max(0.0, best->t - window), best->t + window, true);
+        if (front) return front;
     }
     return best;
 }

@@ -58,11 +58,15 @@ class RayCaster {
     // of the frame's size, so that it means the same at every scale.
     double coincidenceTolerance() const;
 
-    // Nearest hit along a ray in either layer (for picking): polygon id and the ray parameter t
-    // (hit = origin + t * direction, so a distance when direction is unit), with 0 <= t <= tmax.
+    // Nearest hit along a ray in either layer (for picking, and for where light goes): polygon
+    // id, the ray parameter t (hit = origin + t * direction, so a distance when direction is
+    // unit), with 0 <= t <= tmax, and whether the ray meets the polygon's front. Of coincident
+    // polygons at the nearest hit, a front is preferred to a back (a zero-thickness slab seen
+    // from either side shows the face on that side).
     struct Hit {
         std::uint32_t polygon;
         double t;
+        bool front;
     };
     std::optional<Hit> intersect(const glm::dvec3& origin, const glm::dvec3& direction,
                                  double tmax) const;

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <vector>
 
 namespace rad {
 namespace {
@@ -21,59 +23,80 @@ glm::dvec2 hammersley(std::uint32_t i, std::uint32_t n) {
     return {(i + 0.5) / n, double(bits) * 2.3283064365386963e-10};
 }
 
+// Rays for the whole scene, shared out by power.
+constexpr double kRays = 200'000;
+
 }  // namespace
 
-LightDestinations traceDestinations(const Scene& scene, const RayCaster& rays) {
-    const std::size_t polygons = scene.polygons.size();
-    // About 200k rays in all, between 8 and 64 per polygon.
-    const auto perPolygon = static_cast<std::uint32_t>(
-        std::clamp<std::size_t>(200'000 / std::max<std::size_t>(1, polygons), 8, 64));
-    LightDestinations d;
-    d.escaped.assign(polygons, 0.0f);
-    d.backFaces.assign(polygons, 0.0f);
+void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
+                 EnergyBalance& energy) {
+    // The surface leaves and the light leaving each (B A).
+    std::vector<ElementId> leaves;
+    for (std::uint32_t p = 0; p < scene.polygons.size() && p < h.polygonCount(); ++p) {
+        std::vector<ElementId> stack;
+        if (h.polygonElement(p) != kNone) stack.push_back(h.polygonElement(p));
+        while (!stack.empty()) {
+            const ElementId e = stack.back();
+            stack.pop_back();
+            if (h[e].isLeaf())
+                leaves.push_back(e);
+            else
+                stack.insert(stack.end(), h[e].children.begin(), h[e].children.end());
+        }
+    }
+    std::vector<double> leaving(leaves.size(), 0.0);
+    double total = 0.0;
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+        leaving[i] = std::max(0.0, h[leaves[i]].area * luminance(h[leaves[i]].radiosity));
+        if (std::isfinite(leaving[i])) total += leaving[i];
+    }
+    std::vector<double> escaped(leaves.size(), 0.0), back(leaves.size(), 0.0);
     const double offset = 10.0 * rays.coincidenceTolerance();
-    tbb::parallel_for(std::size_t(0), polygons, [&](std::size_t p) {
-        const Polygon& poly = scene.polygons[p];
-        const glm::dvec3 n = poly.normal();
+    tbb::parallel_for(std::size_t(0), leaves.size(), [&](std::size_t i) {
+        if (!(leaving[i] > 0.0) || !std::isfinite(leaving[i])) return;
+        const HElement& leaf = h[leaves[i]];
+        const glm::dvec3 n = leaf.normal;
         if (n == glm::dvec3(0.0)) return;
+        const auto count = static_cast<std::uint32_t>(
+            std::clamp(std::lround(kRays * leaving[i] / total), 4L, 1L << 16));
         const glm::dvec3 t =
             glm::normalize(std::abs(n.x) > 0.5 ? glm::cross(n, glm::dvec3(0, 1, 0))
                                                : glm::cross(n, glm::dvec3(1, 0, 0)));
         const glm::dvec3 b = glm::cross(n, t);
-        std::uint32_t escaped = 0, back = 0;
-        for (std::uint32_t k = 0; k < perPolygon; ++k) {
-            // A point on the polygon, and a cosine-weighted direction from it.
-            glm::dvec2 uv = hammersley(k, perPolygon);
-            if (poly.vertexCount == 3 && uv.x + uv.y > 1.0) uv = glm::dvec2(1.0) - uv;
-            const glm::dvec3 origin = polygonPoint(poly, uv) + offset * n;
-            const glm::dvec2 q = hammersley((k * 7u + 3u) % perPolygon, perPolygon);
+        const auto& v = leaf.patch.v;
+        std::uint32_t missed = 0, backs = 0;
+        for (std::uint32_t k = 0; k < count; ++k) {
+            // A point on the leaf, kept off its edges (a ray from a point on
+            // an edge shared with another polygon starts in that polygon's
+            // plane), and a cosine-weighted direction from it.
+            glm::dvec2 uv = 0.005 + 0.99 * hammersley(k, count);
+            glm::dvec3 point;
+            if (leaf.patch.n == 4) {
+                point = glm::mix(glm::mix(v[0], v[1], uv.x), glm::mix(v[3], v[2], uv.x), uv.y);
+            } else {
+                if (uv.x + uv.y > 1.0) uv = glm::dvec2(1.0) - uv;
+                point = v[0] + uv.x * (v[1] - v[0]) + uv.y * (v[2] - v[0]);
+            }
+            const glm::dvec2 q = hammersley((k * 7u + 3u) % count, count);
             const double phi = 2.0 * std::numbers::pi * q.y, r = std::sqrt(q.x);
             const glm::dvec3 dir =
                 r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(1.0 - q.x) * n;
-            const auto hit = rays.intersect(origin, dir, std::numeric_limits<double>::infinity());
+            const auto hit =
+                rays.intersect(point + offset * n, dir, std::numeric_limits<double>::infinity());
             if (!hit)
-                ++escaped;
-            else if (glm::dot(scene.polygons[hit->polygon].normal(), dir) >= 0.0)
-                ++back;
+                ++missed;
+            else if (!hit->front)
+                ++backs;
         }
-        d.escaped[p] = float(escaped) / float(perPolygon);
-        d.backFaces[p] = float(back) / float(perPolygon);
+        escaped[i] = leaving[i] * missed / count;
+        back[i] = leaving[i] * backs / count;
     });
-    return d;
-}
-
-void auditEnergy(const Hierarchy& h, const LightDestinations& d, EnergyBalance& energy) {
-    double escaped = 0.0, back = 0.0;
-    for (std::uint32_t p = 0; p < h.polygonCount() && p < d.escaped.size(); ++p) {
-        const ElementId e = h.polygonElement(p);
-        if (e == kNone) continue;
-        const double leaving = h[e].area * luminance(h[e].radiosity);
-        escaped += leaving * d.escaped[p];
-        back += leaving * d.backFaces[p];
+    energy.escaped = energy.backFaces = 0.0;
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+        energy.escaped += escaped[i];
+        energy.backFaces += back[i];
     }
-    energy.escaped = escaped;
-    energy.backFaces = back;
-    energy.lost = energy.emitted - energy.absorbed - escaped - back;
+    energy.lost = energy.emitted - energy.absorbed - energy.escaped - energy.backFaces;
     energy.created = std::max(0.0, energy.absorbed - energy.emitted);
 }
 

@@ -151,6 +151,7 @@ double Solver::pushPull() {
     tables_.resize(h_.shapeSlots());
     Walk walk;
     push(h_.root(), Down{}, true, 0, walk);
+    if (!std::isfinite(walk.change) || !std::isfinite(walk.total)) return NAN;
     return walk.total > 0.0 ? walk.change / walk.total : 0.0;
 }
 
@@ -216,9 +217,10 @@ SolveResult Solver::solve(const SolveSettings& settings,
             result.estimatedError = 0.0;
             return result;
         }
-        growing = previous > 0.0 && delta > previous ? growing + 1 : 0;
-        // The first sweeps after a refinement may rise; a change that grows
-        // for this long is an iteration that amplifies.
+        growing = previous > 0.0 && delta >= previous * (1.0 - 1e-9) ? growing + 1 : 0;
+        // The first sweeps after a refinement may rise; a change that does not
+        // fall for this long is an iteration that amplifies (a converging one
+        // falls geometrically, however slowly).
         if (growing >= kGrowingSweeps) {
             result.status = Status::Diverged;
             return result;
