@@ -206,7 +206,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     }
     s.hierarchy.compact();
     s.links.compact();
-    st.memory = {s.hierarchy.memoryBytes() + s.solver.memoryBytes(), s.links.memoryBytes()};
+    st.memory = {s.hierarchy.memoryBytes(), s.links.memoryBytes()};
     st.energy = energy();
     // The full sweeps left every receiver's irradiance consistent with the
     // sources' gathered B: the in-place updates start from here.

@@ -72,9 +72,6 @@ struct HElement {
     // Its links changed: its irradiance is summed again from them before the
     // next push (Refiner::takeDirty), rather than adjusted link by link.
     bool stale = false;
-    // Clusters: its links or its geometry changed since its arrival table
-    // (solve/ClusterTransfer.h) was built.
-    bool arrivalsStale = true;
 
     // Links arriving here (this element is the receiver).
     std::vector<LinkId> links;   // active

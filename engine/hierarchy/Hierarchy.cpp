@@ -76,7 +76,7 @@ const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount) {
 }
 
 Hierarchy::Hierarchy(const Scene& scene, double minArea)
-    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), polygonKeys_(scene.polygons.size(), 0), objectClusters_(scene.objects.size(), kNone), minArea_(minArea) {
+    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), objectClusters_(scene.objects.size(), kNone), minArea_(minArea) {
     std::vector<std::uint32_t> dynamicObjects, staticObjects;
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
         if (scene.objects[o].polygonCount == 0) continue;
@@ -106,24 +106,6 @@ Hierarchy::Hierarchy(const Scene& scene, double minArea)
     for (ElementId c : top) elements_[c].parent = root_;
     finishCluster(root_);
     assignRanges(root_, 0, false);
-    orderMembers();
-}
-
-void Hierarchy::orderMembers() {
-    inOrder_.clear();
-    for (std::uint32_t p = 0; p < polygonElements_.size(); ++p)
-        if (polygonElements_[p] != kNone) inOrder_.push_back(p);
-    std::sort(inOrder_.begin(), inOrder_.end(), [&](std::uint32_t a, std::uint32_t b) { return polygonKeys_[a] < polygonKeys_[b]; });
-    ordinal_.assign(polygonElements_.size(), 0);
-    for (std::uint32_t i = 0; i < inOrder_.size(); ++i) ordinal_[inOrder_[i]] = i;
-}
-
-std::pair<std::uint32_t, std::uint32_t> Hierarchy::memberSpan(ElementId cluster) const {
-    const IndexRange& r = elements_[cluster].range;
-    const auto key = [&](std::uint32_t p) { return polygonKeys_[p]; };
-    const auto lo = std::lower_bound(inOrder_.begin(), inOrder_.end(), r.first, [&](std::uint32_t p, std::uint64_t k) { return key(p) < k; });
-    const auto hi = std::upper_bound(lo, inOrder_.end(), r.last, [&](std::uint64_t k, std::uint32_t p) { return k < key(p); });
-    return {static_cast<std::uint32_t>(lo - inOrder_.begin()), static_cast<std::uint32_t>(hi - lo)};
 }
 
 ElementId Hierarchy::add(HElement e) {
@@ -242,7 +224,6 @@ void Hierarchy::finishCluster(ElementId id) {
             parts.push_back({std::span(cs.facets.data(), cs.facetCount), std::span(cs.samples.data(), cs.sampleCount)});
         }
     }
-    c.arrivalsStale = true;  // its members moved, or its children changed
     ClusterShape& shape = shapes_[c.shape];
     const int facetsBefore = shape.facetCount;
     const std::vector<std::uint8_t> mapBefore = shape.childFacet;
@@ -302,7 +283,6 @@ std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool re
         // its existing quadtree must stay allowed.
         const std::uint64_t count = renumber ? e.range.size() : quadtreeIndexCount(e.area, minArea_, what);
         e.range = {first, checkedAdd(first, count - 1, what)};
-        polygonKeys_[e.polygon] = first;
         assignQuadtreeRanges(id);
         return elements_[id].range.last;
     }
@@ -355,10 +335,6 @@ void Hierarchy::attachToRoot(ElementId cluster) {
     elements_[root_].children.push_back(cluster);
     finishCluster(root_);
     assignRanges(root_, 0, true);
-    orderMembers();
-    // Every cluster's members moved in the order: their arrival tables go.
-    for (HElement& e : elements_)
-        if (!e.isSurface()) e.arrivalsStale = true;
 }
 
 bool Hierarchy::canSubdivide(ElementId id) const {

@@ -38,15 +38,6 @@ public:
     // The surface element of each input polygon (quadtree root).
     ElementId polygonElement(std::uint32_t polygon) const { return polygonElements_[polygon]; }
     std::size_t polygonCount() const { return polygonElements_.size(); }
-    // Per input polygon, the index of its element (range.first): which
-    // elements' ranges hold it.
-    std::span<const std::uint64_t> polygonKeys() const { return polygonKeys_; }
-    // The input polygons in hierarchy order (by key): the polygons below any
-    // cluster are a contiguous run of it. memberOrdinal(p) is p's position;
-    // memberSpan(c) the run below cluster c as (first, count).
-    std::uint32_t memberOrdinal(std::uint32_t polygon) const { return ordinal_[polygon]; }
-    std::pair<std::uint32_t, std::uint32_t> memberSpan(ElementId cluster) const;
-    std::uint32_t memberPolygon(std::uint32_t ordinal) const { return inOrder_[ordinal]; }
     // The cluster holding all of one object's polygons.
     ElementId objectCluster(std::uint32_t object) const { return objectClusters_[object]; }
     // The object clusters right under the root: those that can move without
@@ -72,7 +63,6 @@ public:
     // down to the leaf.
     std::vector<ElementId> pathTo(std::uint32_t polygon, const glm::dvec2& uv) const;
 
-    std::size_t shapeSlots() const { return shapes_.size(); }
     // A cluster's orientation (see ClusterShape.h).
     ClusterShape& shape(ElementId cluster) { return shapes_[elements_[cluster].shape]; }
     const ClusterShape& shape(ElementId cluster) const { return shapes_[elements_[cluster].shape]; }
@@ -128,9 +118,6 @@ private:
     std::vector<ClusterShape> shapes_;
     std::vector<std::uint32_t> freeShapes_;
     std::vector<ElementId> polygonElements_;
-    std::vector<std::uint64_t> polygonKeys_;
-    std::vector<std::uint32_t> inOrder_, ordinal_;  // polygons by key, and each one's position
-    void orderMembers();
     std::vector<ElementId> objectClusters_;
     std::vector<ElementId> movable_;
     ElementId root_ = kNone;

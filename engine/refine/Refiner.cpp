@@ -120,17 +120,20 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
         if (rcv.area > src.area) e.mean = src.area / rcv.area * estimateFormFactor(src.patch, rcv.patch, order).mean;
         return e;
     }
-    // A cluster end: the receiver's points (a surface's Gauss points, a
-    // cluster's points on its surfaces facing the source) to the source's
-    // points (ClusterTransfer.h), each pair by the point kernel.
-    const SourcePoints source = sourcePoints(h_, s, rcv.center), receiver = sourcePoints(h_, r, src.center);
+    // A cluster end: the source as a few points (ClusterTransfer.h). A
+    // surface receiver: the mean over its Gauss points of the form factor to
+    // them. A cluster receiver: the kernel at its centre, which each facet
+    // takes times its cosine toward the source.
+    const SourcePoints source = sourcePoints(h_, s, rcv.center);
+    if (!rcv.isSurface()) {
+        const double g = pointKernel(source, rcv.center);
+        return {g, g, g};
+    }
     FormFactorEstimate e;
-    const double area = receiver.totalArea();
-    if (!(area > 0.0)) return e;
     e.min = INFINITY;
-    for (int j = 0; j < receiver.n; ++j) {
-        const double f = pointToSource(source, receiver.p[j], receiver.normal[j]);
-        e.mean += receiver.area[j] / area * f;
+    for (const SamplePoint& q : patchSamples(rcv.patch, 2)) {
+        const double f = pointToSource(source, q.p, rcv.normal);
+        e.mean += q.w * f;
         e.min = std::min(e.min, f);
         e.max = std::max(e.max, f);
     }
@@ -140,8 +143,8 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
 double Refiner::coupling(const Link& link, double transfer) const {
     const HElement& r = h_[link.receiver];
     if (r.isSurface()) return r.area * transfer;
-    // A cluster receives on its surfaces that face the source.
-    return transfer * sourcePoints(h_, link.receiver, h_[link.source].center).totalArea();
+    // A cluster receives by its projected area toward the source.
+    return transfer * h_.shape(link.receiver).projectedArea(centreDirection(h_, link.receiver, link.source));
 }
 
 double Refiner::potentialTransfer(const Link& link) const {
@@ -258,7 +261,6 @@ void Refiner::regather(LinkId id) {
 
 void Refiner::markStale(ElementId receiver) {
     h_[receiver].stale = true;
-    if (!h_[receiver].isSurface()) h_[receiver].arrivalsStale = true;
     markDirty(receiver);
 }
 

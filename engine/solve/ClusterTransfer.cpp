@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <tuple>
 
 #include "links/FormFactor.h"
 
@@ -84,63 +83,50 @@ double pointToSource(const SourcePoints& source, const glm::dvec3& x, const glm:
     return std::min(f, 1.0);
 }
 
-std::size_t ArrivalTable::memoryBytes() const {
-    return sizeof(ArrivalTable) + links.capacity() * sizeof(LinkId) +
-           formFactors.capacity() * sizeof(float);
-}
-
-void buildArrivalTable(const Hierarchy& h, const LinkStore& links, ElementId cluster,
-                       ArrivalTable& table) {
-    const HElement& c = h[cluster];
-    table.links.clear();
-    for (LinkId id : c.links)
-        if (links[id].unoccluded > 0.0) table.links.push_back(id);
-    std::tie(table.firstMember, table.memberCount) = h.memberSpan(cluster);
-    const std::size_t n = table.links.size();
-    table.formFactors.assign(std::size_t(table.memberCount) * n, 0.0f);
-    for (std::size_t l = 0; l < n; ++l) {
-        const SourcePoints source = sourcePoints(h, links[table.links[l]].source, c.center);
-        for (std::uint32_t m = 0; m < table.memberCount; ++m) {
-            const HElement& member = h[h.polygonElement(h.memberPolygon(table.firstMember + m))];
-            table.formFactors[m * n + l] =
-                static_cast<float>(pointToSource(source, member.center, member.normal));
-        }
+double pointKernel(const SourcePoints& source, const glm::dvec3& x) {
+    double g = 0.0;
+    for (int k = 0; k < source.n; ++k) {
+        const glm::dvec3 d = source.p[k] - x;
+        const double r2 = glm::dot(d, d);
+        const double cs = -glm::dot(source.normal[k], d);
+        if (r2 > 0.0 && cs > 0.0)
+            g += source.area[k] * cs / (std::numbers::pi * r2 * std::sqrt(r2));
     }
-    table.built = true;
+    return std::min(g, 1.0);
 }
 
-std::size_t Arrivals::add(const Hierarchy& h, const LinkStore& links, const ArrivalTable& table) {
-    const std::size_t mark = levels_.size();
-    levels_.push_back({&table, strength_.size()});
-    for (LinkId id : table.links) {
+void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
+                 FacetArrivals& arrivals) {
+    const ClusterShape& shape = h.shape(cluster);
+    for (LinkId id : h[cluster].links) {
         const Link& l = links[id];
-        // The held transfer over the unoccluded one: the visibility as gathered.
-        const double visibility = l.unoccluded > 0.0 ? l.gathered / l.unoccluded : 0.0;
-        visibility_.push_back(visibility);
-        strength_.push_back(visibility * sentRadiosity(h, l));
-    }
-    return mark;
-}
-
-void Arrivals::drop(std::size_t mark) {
-    if (mark >= levels_.size()) return;
-    strength_.resize(levels_[mark].first);
-    visibility_.resize(levels_[mark].first);
-    levels_.resize(mark);
-}
-
-void Arrivals::resolve(const Hierarchy& h, const HElement& member, glm::dvec3& irradiance,
-                       double& formFactorSum) const {
-    const std::uint32_t ordinal = h.memberOrdinal(member.polygon);
-    for (const Level& level : levels_) {
-        const ArrivalTable& t = *level.table;
-        const std::size_t n = t.links.size();
-        const float* f = t.formFactors.data() + std::size_t(ordinal - t.firstMember) * n;
-        for (std::size_t l = 0; l < n; ++l) {
-            irradiance += double(f[l]) * strength_[level.first + l];
-            formFactorSum += double(f[l]) * visibility_[level.first + l];
+        if (l.gathered == 0.0) continue;
+        const glm::dvec3 u = centreDirection(h, cluster, l.source);
+        const glm::dvec3 sent = sentRadiosity(h, l);
+        for (int k = 0; k < shape.facetCount; ++k) {
+            const double c = glm::dot(shape.facets[k].normal, u);
+            if (c <= 0.0) continue;  // one-sided: facing away, it gets none
+            arrivals.irradiance[k] += c * l.gathered * sent;
+            arrivals.formFactorSum[k] += c * l.gathered;
         }
     }
+}
+
+FacetArrivals ChildArrivals::cluster(ElementId child) {
+    FacetArrivals out;
+    const ClusterShape& childShape = h_.shape(child);
+    for (int j = 0; j < childShape.facetCount; ++j) {
+        const std::uint8_t k = shape_.childFacet[entry_++];
+        out.irradiance[j] = arrivals_.irradiance[k];
+        out.formFactorSum[j] = arrivals_.formFactorSum[k];
+    }
+    return out;
+}
+
+void ChildArrivals::surface(glm::dvec3& irradiance, double& formFactorSum) {
+    const std::uint8_t k = shape_.childFacet[entry_++];
+    irradiance += arrivals_.irradiance[k];
+    formFactorSum += arrivals_.formFactorSum[k];
 }
 
 }  // namespace rad

@@ -5,12 +5,15 @@
 // A link is a point-to-point transfer between the centres of its two ends:
 //   - a cluster source sends toward the receiver the radiosity of its facets
 //     that face it (ClusterShape::radiosityToward), from its projected area;
-//   - a cluster receiver does not store what arrives: when it is pushed, each
-//     of its links brings to each member surface the form factor from the
-//     member to the source (by the member's own position and cosine, over a
-//     few points of the source) times the link's visibility times the
-//     radiosity sent. A surface facing away gets none, and each member gets
-//     what its own view of the source allows, not a mean over the cluster.
+//   - a cluster receiver keeps, per link, the kernel G at its centre (the
+//     form factor per unit of the receiving surface's cosine) and resolves
+//     what arrives per facet when it is pushed: a facet of normal n takes
+//     G max(0, n . u) from a source in direction u, times the visibility and
+//     the radiosity sent. Each member surface takes its facet's share, so a
+//     surface facing away gets none, and the cluster as a whole catches
+//     G times its projected area toward the source. A per-cluster sum over
+//     its links, not a loop over members per link: pushing a cluster costs
+//     its links times its facets, and each member one look-up.
 
 #include <array>
 #include <cstdint>
@@ -52,45 +55,38 @@ SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const glm::dvec3
 // by quadrature over its points: sum of A_k cos_k cos_x / (pi r_k^2).
 double pointToSource(const SourcePoints& source, const glm::dvec3& x, const glm::dvec3& nx);
 
-// What a cluster's links bring to its members, by geometry: for each of its
-// active links and each member (the input polygons below it, in hierarchy
-// order, Hierarchy::memberSpan), the unoccluded form factor from the
-// member's centre to the link's source (pointToSource). Built once per link
-// set and geometry; a push multiplies it by each link's visibility and sent
-// radiosity as currently held.
-struct ArrivalTable {
-    std::vector<LinkId> links;
-    std::uint32_t firstMember = 0, memberCount = 0;
-    std::vector<float> formFactors;  // [member * links.size() + link]
-    bool built = false;
-    std::size_t memoryBytes() const;
-};
-void buildArrivalTable(const Hierarchy& h, const LinkStore& links, ElementId cluster,
-                       ArrivalTable& table);
+// The kernel of the point approximation at x: the form factor from x to the
+// source per unit of x's cosine toward it (sum of A_k cos_k / (pi r_k^2)).
+double pointKernel(const SourcePoints& source, const glm::dvec3& x);
 
-// The arrivals of the clusters above a member, for a push: per cluster its
-// table and, per link, the held visibility and the irradiance it brings to a
-// surface of unit form factor (visibility times sent radiosity).
-class Arrivals {
+// What arrives at a cluster's facets from its links and those of the
+// clusters above it: the irradiance on a surface with the facet's normal,
+// and the form factors it came through (for the energy guard).
+struct FacetArrivals {
+    std::array<glm::dvec3, ClusterShape::kMaxFacets> irradiance{};
+    std::array<double, ClusterShape::kMaxFacets> formFactorSum{};
+};
+
+// Adds what the cluster's own active links bring (from their gathered state).
+void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
+                 FacetArrivals& arrivals);
+
+// Walks a cluster's children in order with what each inherits from the
+// cluster's facets: a child cluster its facets' values, a surface its own.
+class ChildArrivals {
   public:
-    // Adds a cluster's arrivals (from the links' gathered state); returns a
-    // mark for drop().
-    std::size_t add(const Hierarchy& h, const LinkStore& links, const ArrivalTable& table);
-    void drop(std::size_t mark);
-    // The irradiance and form-factor sum a member (an input polygon's own
-    // element) takes from all clusters above it. A member facing away from a
-    // source gets none from it (the table's form factor is zero).
-    void resolve(const Hierarchy& h, const HElement& member, glm::dvec3& irradiance,
-                 double& formFactorSum) const;
+    ChildArrivals(const Hierarchy& h, ElementId cluster, const FacetArrivals& arrivals)
+        : h_(h), shape_(h.shape(cluster)), arrivals_(arrivals) {}
+    // The next child's arrivals (a cluster child).
+    FacetArrivals cluster(ElementId child);
+    // The next child's irradiance and form-factor sum (a surface child).
+    void surface(glm::dvec3& irradiance, double& formFactorSum);
 
   private:
-    struct Level {
-        const ArrivalTable* table;
-        std::size_t first;  // into the per-link values
-    };
-    std::vector<Level> levels_;
-    std::vector<glm::dvec3> strength_;
-    std::vector<double> visibility_;
+    const Hierarchy& h_;
+    const ClusterShape& shape_;
+    const FacetArrivals& arrivals_;
+    std::size_t entry_ = 0;  // into shape_.childFacet
 };
 
 }  // namespace rad

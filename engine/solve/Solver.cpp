@@ -50,27 +50,34 @@ Solver::Down Solver::shareOf(const Down& down, const HElement& child, double mea
     return Down{w * down.irradiance, w * down.formFactorSum};
 }
 
-Solver::Down Solver::surfaceDown(const HElement& e, const Down& down, const Walk& walk) const {
+Solver::Down Solver::surfaceDown(const HElement& e, const Down& down) {
     Down d = down;
-    // The polygon's own element: what its clusters' links bring, by its orientation.
-    if (e.depth == 0) {
-        d = Down{};
-        walk.arriving.resolve(h_, e, d.irradiance, d.formFactorSum);
-    }
     d.irradiance += e.irradiance;
     d.formFactorSum += e.formFactorSum;
     return d;
 }
 
-glm::dvec3 Solver::push(ElementId id, const Down& down, bool forced, int depth, Walk& walk) {
+glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& facets, bool forced,
+                        int depth, Walk& walk) {
     HElement& e = h_[id];
     if (!forced && !e.changed) return e.radiosity;
     if (walk.visited) walk.visited->push_back(id);
     const bool below = forced || e.dirty;
     glm::dvec3 b(0.0);
     if (!e.isSurface()) {
-        const std::size_t mark = walk.arriving.add(h_, links_, arrivalTable(id));
+        FacetArrivals arrivals = facets;
+        addArrivals(h_, links_, id, arrivals);
         const std::vector<ElementId>& children = e.children;
+        // What each child inherits from this cluster's facets, in order.
+        std::vector<Down> surfaceDown(children.size());
+        std::vector<FacetArrivals> clusterDown(children.size());
+        ChildArrivals inherit(h_, id, arrivals);
+        for (std::size_t i = 0; i < children.size(); ++i) {
+            if (h_[children[i]].isSurface())
+                inherit.surface(surfaceDown[i].irradiance, surfaceDown[i].formFactorSum);
+            else
+                clusterDown[i] = inherit.cluster(children[i]);
+        }
         double area = 0.0;
         if (depth < kParallelDepth && children.size() > 1) {
             // The clusters near the root split the work between the cores:
@@ -80,9 +87,9 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, bool forced, int depth, 
             std::vector<Walk> walks(children.size());
             std::vector<std::vector<ElementId>> visited(children.size());
             tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) {
-                walks[i].arriving = walk.arriving;
                 walks[i].visited = walk.visited ? &visited[i] : nullptr;
-                childB[i] = push(children[i], Down{}, below, depth + 1, walks[i]);
+                childB[i] =
+                    push(children[i], surfaceDown[i], clusterDown[i], below, depth + 1, walks[i]);
             });
             for (std::size_t i = 0; i < children.size(); ++i) {
                 b += h_[children[i]].area * childB[i];
@@ -93,17 +100,17 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, bool forced, int depth, 
                     walk.visited->insert(walk.visited->end(), visited[i].begin(), visited[i].end());
             }
         } else {
-            for (ElementId c : children) {
-                b += h_[c].area * push(c, Down{}, below, depth + 1, walk);
-                area += h_[c].area;
+            for (std::size_t i = 0; i < children.size(); ++i) {
+                b += h_[children[i]].area *
+                     push(children[i], surfaceDown[i], clusterDown[i], below, depth + 1, walk);
+                area += h_[children[i]].area;
             }
         }
-        walk.arriving.drop(mark);
         if (area > 0.0) b /= area;
         e.radiosity = b;
         h_.pullPower(id);
     } else {
-        const Down here = surfaceDown(e, down, walk);
+        const Down here = surfaceDown(e, down);
         if (e.isLeaf()) {
             b = e.emission + e.reflectance * guarded(here.irradiance, here.formFactorSum);
             walk.change += e.area * std::abs(luminance(b - e.radiosity));
@@ -120,7 +127,8 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, bool forced, int depth, 
             const double uncovered = meanUncovered(e);
             double area = 0.0;
             for (ElementId c : e.children) {
-                b += h_[c].area * push(c, shareOf(here, h_[c], uncovered), below, depth + 1, walk);
+                b += h_[c].area * push(c, shareOf(here, h_[c], uncovered), FacetArrivals{}, below,
+                                       depth + 1, walk);
                 area += h_[c].area;
             }
             if (area > 0.0) b /= area;
@@ -131,26 +139,9 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, bool forced, int depth, 
     return b;
 }
 
-const ArrivalTable& Solver::arrivalTable(ElementId cluster) const {
-    HElement& c = h_[cluster];
-    ArrivalTable& t = tables_[c.shape];
-    if (c.arrivalsStale || !t.built) {
-        buildArrivalTable(h_, links_, cluster, t);
-        c.arrivalsStale = false;
-    }
-    return t;
-}
-
-std::size_t Solver::memoryBytes() const {
-    std::size_t bytes = tables_.capacity() * sizeof(ArrivalTable);
-    for (const ArrivalTable& t : tables_) bytes += t.memoryBytes() - sizeof(ArrivalTable);
-    return bytes;
-}
-
 double Solver::pushPull() {
-    tables_.resize(h_.shapeSlots());
     Walk walk;
-    push(h_.root(), Down{}, true, 0, walk);
+    push(h_.root(), Down{}, FacetArrivals{}, true, 0, walk);
     if (!std::isfinite(walk.change) || !std::isfinite(walk.total)) return NAN;
     return walk.total > 0.0 ? walk.change / walk.total : 0.0;
 }
@@ -159,10 +150,9 @@ std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dir
     for (ElementId e : dirty)
         for (ElementId a = e; a != kNone && !h_[a].changed; a = h_[a].parent) h_[a].changed = true;
     std::vector<ElementId> visited;
-    tables_.resize(h_.shapeSlots());
     Walk walk;
     walk.visited = &visited;
-    push(h_.root(), Down{}, false, 0, walk);
+    push(h_.root(), Down{}, FacetArrivals{}, false, 0, walk);
     return visited;
 }
 
@@ -183,7 +173,8 @@ bool Solver::finiteAndBounded() const {
         const glm::dvec3& b = h_[e].radiosity;
         for (int c = 0; c < 3; ++c) {
             if (!std::isfinite(b[c])) return false;
-            if (guard_ && rho[c] < 1.0 && b[c] > emission[c] / (1.0 - rho[c]) * (1.0 + 1e-6) + 1e-300)
+            if (guard_ && rho[c] < 1.0 &&
+                b[c] > emission[c] / (1.0 - rho[c]) * (1.0 + 1e-6) + 1e-300)
                 return false;
         }
     }
@@ -246,25 +237,34 @@ SolveResult Solver::solve(const SolveSettings& settings,
 
 void Solver::forEachLeaf(
     const std::function<void(const HElement&, const glm::dvec3&, double)>& f) const {
-    tables_.resize(h_.shapeSlots());
-    Walk walk;
-    const std::function<void(ElementId, const Down&)> visit = [&](ElementId id, const Down& down) {
-        const HElement& e = h_[id];
-        if (!e.isSurface()) {
-            const std::size_t mark = walk.arriving.add(h_, links_, arrivalTable(id));
-            for (ElementId c : e.children) visit(c, Down{});
-            walk.arriving.drop(mark);
-            return;
-        }
-        const Down here = surfaceDown(e, down, walk);
-        if (e.isLeaf()) {
-            f(e, here.irradiance, here.formFactorSum);
-            return;
-        }
-        const double uncovered = meanUncovered(e);
-        for (ElementId c : e.children) visit(c, shareOf(here, h_[c], uncovered));
-    };
-    visit(h_.root(), Down{});
+    const std::function<void(ElementId, const Down&, const FacetArrivals&)> visit =
+        [&](ElementId id, const Down& down, const FacetArrivals& facets) {
+            const HElement& e = h_[id];
+            if (!e.isSurface()) {
+                FacetArrivals arrivals = facets;
+                addArrivals(h_, links_, id, arrivals);
+                ChildArrivals inherit(h_, id, arrivals);
+                for (ElementId c : e.children) {
+                    if (h_[c].isSurface()) {
+                        Down d;
+                        inherit.surface(d.irradiance, d.formFactorSum);
+                        visit(c, d, FacetArrivals{});
+                    } else {
+                        visit(c, Down{}, inherit.cluster(c));
+                    }
+                }
+                return;
+            }
+            const Down here = surfaceDown(e, down);
+            if (e.isLeaf()) {
+                f(e, here.irradiance, here.formFactorSum);
+                return;
+            }
+            const double uncovered = meanUncovered(e);
+            for (ElementId c : e.children)
+                visit(c, shareOf(here, h_[c], uncovered), FacetArrivals{});
+        };
+    visit(h_.root(), Down{}, FacetArrivals{});
 }
 
 EnergyBalance Solver::energy() const {

@@ -71,7 +71,6 @@ class Solver {
     EnergyBalance energy() const;
     // The objects where the energy guard divided by more than 1 + threshold.
     std::vector<GuardAction> guardActions(double threshold) const;
-    std::size_t memoryBytes() const;
     // Visits every surface leaf with the irradiance arriving there (before
     // the guard) and its form-factor sum.
     void forEachLeaf(
@@ -87,20 +86,22 @@ class Solver {
     // The walk state of one descent: what the ancestor clusters' links bring,
     // and, for partial push-pulls, the elements visited.
     struct Walk {
-        Arrivals arriving;
         std::vector<ElementId>* visited = nullptr;
         double change = 0.0, total = 0.0;
     };
     // One element of a push-pull: its new B. `forced`: the whole subtree is
     // pushed (full push-pull, or below a dirty element); otherwise only the
     // paths marked changed are.
-    glm::dvec3 push(ElementId id, const Down& down, bool forced, int depth, Walk& walk);
+    // `down`: for a surface, what arrives from above; `facets`: for a
+    // cluster, what its ancestors' links bring to its facets.
+    glm::dvec3 push(ElementId id, const Down& down, const FacetArrivals& facets, bool forced,
+                    int depth, Walk& walk);
     // Cluster levels (from the root) whose children are pushed in parallel.
     static constexpr int kParallelDepth = 8;
     // Sweeps in a row whose change grows before the solve calls it diverging.
     static constexpr int kGrowingSweeps = 20;
-    // What arrives at a surface element from above (its ancestors' links).
-    Down surfaceDown(const HElement& e, const Down& down, const Walk& walk) const;
+    // What arrives at a surface element: from above, and on its own links.
+    static Down surfaceDown(const HElement& e, const Down& down);
     // The push of a surface element's irradiance to its children. What
     // arrives from above came through links coarser than the children's own;
     // at each child it goes to the part of the view that the child's finer
@@ -111,11 +112,6 @@ class Solver {
     // form factors sum to one, as every point's do.
     double meanUncovered(const HElement& e) const;
     static Down shareOf(const Down& down, const HElement& child, double meanUncovered);
-
-    // The arrival table of a cluster, built again when stale. Clusters'
-    // tables are distinct, so disjoint subtrees may build theirs at once.
-    const ArrivalTable& arrivalTable(ElementId cluster) const;
-
     // The leaves' irradiance after the energy guard.
     glm::dvec3 guarded(const glm::dvec3& irradiance, double formFactorSum) const {
         return guard_ && formFactorSum > 1.0 ? irradiance / formFactorSum : irradiance;
@@ -127,8 +123,6 @@ class Solver {
     Hierarchy& h_;
     LinkStore& links_;
     bool guard_ = true;
-    mutable std::vector<ArrivalTable> tables_;  // by cluster shape slot
 };
-
 
 }  // namespace rad
