@@ -19,6 +19,7 @@
 #include "snapshot/RadiositySnapshot.h"
 #include "update/BudgetControl.h"
 #include "update/Obstacles.h"
+#include "update/OracleSteps.h"
 #include "update/LineSpaceUpdate.h"
 #include "update/Reinsertion.h"
 
@@ -96,13 +97,7 @@ struct Engine::State {
 
     // Refinement judges a link by its source's radiosity as last solved.
     void setOracles() {
-        for (ElementId e = 0; e < hierarchy.size(); ++e) {
-            HElement& el = hierarchy[e];
-            // A cluster sends each way what its facets facing that way send:
-            // judged by the brightest, so that a lamp in a dark cluster counts.
-            el.oracle = el.shape != kNone ? hierarchy.shape(e).peakLuminance(hierarchy.shape(e).power)
-                                          : luminance(el.radiosity);
-        }
+        for (ElementId e = 0; e < hierarchy.size(); ++e) hierarchy[e].oracle = oracleOf(hierarchy, e);
     }
 
     std::optional<std::uint32_t> dynamic;
@@ -212,6 +207,8 @@ const SolveStats& Engine::solve(const Progress& progress) {
     // sources' gathered B: the in-place updates start from here.
     s.refiner.takeDirty();
     s.solved = true;
+    // From here on the oracles follow the light in steps from these anchors.
+    anchorOracles(s.hierarchy);
     // First guess of a link update's cost: the refinement time per link made.
     s.budget = BudgetControl(st.refineSeconds / double(std::max<std::size_t>(1, st.links + st.passiveLinks)));
     return st;
@@ -279,8 +276,16 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
 }
 
 FrameStats Engine::refinePending(const UpdateSettings& settings) {
-    if (!state_->solved) throw std::logic_error("refinePending before solve()");
-    return state_->updater.refinePending(settings);
+    State& s = *state_;
+    if (!s.solved) throw std::logic_error("refinePending before solve()");
+    FrameStats f = s.updater.refinePending(settings);
+    // Idle with nothing left to refine: the link lists give back the growth
+    // slack the moves left them.
+    if (f.pending == 0) {
+        s.hierarchy.compact();
+        s.links.compact();
+    }
+    return f;
 }
 
 std::size_t Engine::budgetFor(double targetSeconds) const { return state_->budget.budgetFor(targetSeconds); }

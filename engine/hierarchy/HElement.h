@@ -63,10 +63,15 @@ struct HElement {
     // The B that the receivers of this element's links currently hold in
     // their irradiance: the in-place gather adds F times the difference.
     glm::dvec3 gathered{0.0};
-    // The source luminance that refinement decisions use: B from the converged
-    // solve, then frozen while objects move, so that the link hierarchy is a
-    // function of the geometry alone and moving back restores it.
+    // The source luminance that refinement decisions use (update/OracleSteps.h):
+    // set from B by the solve, then it follows B in steps while objects move:
+    // anchor * kappa^level, the level set by how far B is from anchorLight
+    // (its value when the solve ended), so that a scene moved back to where
+    // it was solved is refined as it was.
     double oracle = 0.0;
+    double anchor = 0.0;
+    double anchorLight = 0.0;
+    std::int8_t level = 0;
     bool changed = false;  // on the path to a modified element (sec. 4.1, Fig. 7)
     bool dirty = false;    // own irradiance changed: the whole subtree is pushed again
     // Its links changed: its irradiance is summed again from them before the
@@ -77,8 +82,10 @@ struct HElement {
     std::vector<LinkId> links;   // active
     std::vector<LinkId> plinks;  // passive: refined, kept as line-space parents
     // Active links leaving this element (it is their source), for further
-    // bounces (sec. 5.3.2) and to know what still depends on it.
+    // bounces (sec. 5.3.2) and to know what still depends on it; and the
+    // p-links leaving it, judged again when its oracle changes.
     std::vector<LinkId> outLinks;
+    std::vector<LinkId> outPlinks;
 
     bool isLeaf() const { return children.empty(); }
     bool isSurface() const { return kind == ElementKind::Surface; }

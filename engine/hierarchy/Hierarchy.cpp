@@ -374,6 +374,9 @@ void Hierarchy::subdivide(ElementId id) {
         c.radiosity = parent.radiosity;
         c.gathered = parent.gathered;
         c.oracle = parent.oracle;
+        c.anchor = parent.anchor;
+        c.anchorLight = parent.anchorLight;
+        c.level = parent.level;
         kids.push_back(add(std::move(c)));
     }
     elements_[id].children = kids;
@@ -394,7 +397,7 @@ void Hierarchy::removeChildren(ElementId id) {
 
 bool Hierarchy::subtreeUnlinked(ElementId id) const {
     const HElement& e = elements_[id];
-    if (!e.links.empty() || !e.plinks.empty() || !e.outLinks.empty()) return false;
+    if (!e.links.empty() || !e.plinks.empty() || !e.outLinks.empty() || !e.outPlinks.empty()) return false;
     for (ElementId c : e.children)
         if (!subtreeUnlinked(c)) return false;
     return true;
@@ -456,6 +459,7 @@ void Hierarchy::compact() {
         e.links.shrink_to_fit();
         e.plinks.shrink_to_fit();
         e.outLinks.shrink_to_fit();
+        e.outPlinks.shrink_to_fit();
     }
 }
 
@@ -464,7 +468,8 @@ std::size_t Hierarchy::memoryBytes() const {
                         shapes_.capacity() * sizeof(ClusterShape) + freeShapes_.capacity() * sizeof(std::uint32_t);
     for (const ClusterShape& s : shapes_) bytes += s.childFacet.capacity();
     for (const HElement& e : elements_)
-        bytes += (e.children.capacity() + e.links.capacity() + e.plinks.capacity() + e.outLinks.capacity()) *
+        bytes += (e.children.capacity() + e.links.capacity() + e.plinks.capacity() + e.outLinks.capacity() +
+                  e.outPlinks.capacity()) *
                  sizeof(std::uint32_t);
     return bytes;
 }

@@ -226,6 +226,7 @@ LinkId Refiner::attach(const Link& link) {
     const LinkId id = links_.add(link);
     links_[id].passive = true;  // activate() expects a p-link
     h_[link.receiver].plinks.push_back(id);
+    h_[link.source].outPlinks.push_back(id);
     activate(id);
     return id;
 }
@@ -235,6 +236,7 @@ void Refiner::activate(LinkId id) {
     HElement& r = h_[l.receiver];
     unorderedErase(r.plinks, id);
     r.links.push_back(id);
+    unorderedErase(h_[l.source].outPlinks, id);
     h_[l.source].outLinks.push_back(id);
     l.passive = false;
     if (l.visStale) refreshVisibility(l);
@@ -249,6 +251,7 @@ void Refiner::deactivate(LinkId id) {
     unorderedErase(r.links, id);
     unorderedErase(h_[l.source].outLinks, id);
     r.plinks.push_back(id);
+    h_[l.source].outPlinks.push_back(id);
     l.passive = true;
     markStale(l.receiver);  // eq. 2: what it gathered through this link goes
 }
@@ -298,8 +301,8 @@ std::vector<ElementId> Refiner::takeDirty() {
 
 void Refiner::remove(LinkId id) {
     if (!links_[id].passive) deactivate(id);
-    HElement& r = h_[links_[id].receiver];
-    unorderedErase(r.plinks, id);
+    unorderedErase(h_[links_[id].receiver].plinks, id);
+    unorderedErase(h_[links_[id].source].outPlinks, id);
     links_.remove(id);
 }
 

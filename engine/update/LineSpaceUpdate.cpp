@@ -13,6 +13,7 @@
 #include "refine/Refiner.h"
 #include "solve/ClusterTransfer.h"
 #include "solve/Solver.h"
+#include "update/OracleSteps.h"
 
 namespace rad {
 namespace {
@@ -69,8 +70,12 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
     // bounces write radiosity and irradiance.
     tbb::task_group overlay;
     overlay.run([this, changed = visited] { recordOverlay(changed); });
+    touched_.assign(visited.begin(), visited.end());
     bounce(std::move(visited), settings, stats);
     overlay.wait();
+    // 4. Refinement follows the light: links from elements whose oracle
+    //    stepped are judged again, with what is left of the budget.
+    followTheLight(settings, stats, budget == kUnlimited ? kUnlimited : (budget > stats.spent ? budget - stats.spent : 0));
     stats.pushPullSeconds = since(t);
 
     obstacles_.clear();
@@ -146,10 +151,43 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     const auto t = std::chrono::steady_clock::now();
     std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
     stats.changedElements = visited.size();
+    touched_.assign(visited.begin(), visited.end());
     bounce(std::move(visited), settings, stats);
+    followTheLight(settings, stats, budget == kUnlimited ? kUnlimited : (budget > stats.spent ? budget - stats.spent : 0));
     stats.pushPullSeconds = since(t);
     finish(stats, start);
     return stats;
+}
+
+void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats& stats, std::size_t budget) {
+    std::sort(touched_.begin(), touched_.end());
+    touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
+    const std::vector<ElementId> moved = stepOracles(h_, touched_, kOracleFloor * referenceRadiosity_);
+    touched_.clear();
+    if (moved.empty()) return;
+    const std::size_t spentBefore = stats.spent;
+    RefineHeap heap;
+    for (ElementId s : moved) {
+        for (LinkId id : h_[s].outLinks)
+            if (refiner_.wouldRefine(links_[id])) heap.push({heapKey(links_[id]), id});
+        // Refinement its new oracle no longer asks for goes (its line-space
+        // children with it).
+        for (LinkId id : std::vector<LinkId>(h_[s].outPlinks)) {
+            const Link& l = links_[id];
+            if (l.live && l.passive && l.source == s && !refiner_.wouldRefine(l)) {
+                reinstate(id);
+                ++stats.reinstated;
+                ++stats.spent;
+            }
+        }
+    }
+    const std::size_t used = stats.spent - spentBefore;
+    refineFromHeap(heap, stats, budget == kUnlimited ? kUnlimited : (budget > used ? budget - used : 0));
+    // The light that the new links carry, once around.
+    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
+    stats.changedElements += visited.size();
+    bounce(std::move(visited), settings, stats);
+    touched_.clear();  // what moved now is stepped at the next frame
 }
 
 bool LineSpaceUpdate::affectedByMotion(ElementId s, ElementId r) {
@@ -507,6 +545,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         ++stats.bounces;
         visited = solver_.partialPushPull(refiner_.takeDirty());
         stats.changedElements += visited.size();
+        touched_.insert(touched_.end(), visited.begin(), visited.end());
     }
 }
 

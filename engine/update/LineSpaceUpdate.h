@@ -110,6 +110,12 @@ private:
     static constexpr double kEnteringBoost = 4.0;
     double heapKey(const Link& l) const;
     void bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats);
+    // Steps the oracles of the elements this frame's push-pulls visited
+    // (OracleSteps.h) and judges again the links of those that moved.
+    void followTheLight(const UpdateSettings& settings, FrameStats& stats, std::size_t budget);
+    // The oracles' floor, as a fraction of the scene's mean emitted radiosity.
+    static constexpr double kOracleFloor = 1e-3;
+    std::vector<ElementId> touched_;  // elements the frame's push-pulls visited
     // A source's change of radiosity sent along one of its links.
     struct Transfer {
         ElementId receiver;

@@ -51,7 +51,8 @@ public:
     FrameStats moveDynamicObject(const glm::dmat4& worldFromLocal, const UpdateSettings& settings = {});
 
     // Refines, within the settings' budget and without motion, the links an
-    // earlier budget left coarse.
+    // earlier budget left coarse; with nothing left to refine, gives back the
+    // growth slack of the link lists.
     FrameStats refinePending(const UpdateSettings& settings = {});
     // The link-update budget that fits a target frame time, from the cost of
     // link updates measured on the frames so far (sec. 6.1).

@@ -1,0 +1,47 @@
+#pragma once
+// Refinement that follows the light, without remembering the path.
+//
+// BF refinement judges a link by its source's radiosity (the oracle). Frozen
+// at the first solve, a room that was dark then is never refined when a door
+// opens onto it (the paper's Fig. 10); following B exactly, a refinement
+// made while a region was bright is kept after it goes dark again, and moving
+// an object away and back no longer returns the solution it started from.
+//
+// So the oracle follows B in steps: it only takes the values
+// (anchor + f) * kStep^level - f, where the anchor is the oracle the solve
+// refined by and f a small floor (so that a region dark at the solve can
+// still brighten). The level is the number of steps B stands from its value
+// when the solve ended (anchorLight), and changes only when B is more than
+// kHysteresis steps away from the current level. When B returns to its value
+// at the solve, the level returns to 0 and the oracle to exactly the one the
+// hierarchy was built with; the links of an element whose level moved are
+// judged again (refined, or their p-links reinstated), so the hierarchy
+// returns too.
+
+#include <span>
+#include <vector>
+
+#include "hierarchy/Hierarchy.h"
+
+namespace rad {
+
+struct OracleSteps {
+    static constexpr double kStep = 1.4142135623730951;  // sqrt(2): the oracle is within 19% of B
+    static constexpr double kHysteresis = 0.75;  // in steps: B back at the anchor is level 0
+};
+
+// The luminance refinement judges an element's links by: a surface's B, and
+// for a cluster its brightest facet (a lamp in a dark cluster counts).
+double oracleOf(const Hierarchy& hierarchy, ElementId e);
+
+// After a solve: every element's anchor becomes its oracle and its anchor
+// light its current B (oracleOf), at level 0.
+void anchorOracles(Hierarchy& hierarchy);
+
+// Moves the oracles of the given elements to the level nearest their current
+// B when it is more than kHysteresis steps away. `floor`: f above. Returns
+// the elements whose oracle moved.
+std::vector<ElementId> stepOracles(Hierarchy& hierarchy, std::span<const ElementId> elements,
+                                   double floor);
+
+}  // namespace rad
