@@ -9,11 +9,14 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "radiosity/Gltf.h"
+#include "support/Cli.h"
 #include "support/TempDir.h"
+#include "support/TestScenes.h"
 
 namespace rad {
 namespace {
@@ -814,6 +817,59 @@ TEST(GltfImportDuplicates, AHundredThousandPolygonsAreQuick) {
     EXPECT_LT(seconds, 20.0);
     std::printf("imported %zu polygons and dropped %zu duplicates in %.2f s\n", 2 * s.polygons.size(),
                 notes.duplicatePolygons, seconds);
+}
+
+// The test: furniture duplicated in place in a furnished room gives
+// the room's answer. A second node shows the chair's mesh again.
+TEST(GltfImportDuplicates, AFurnishedRoomWithADuplicatedChairSolvesLikeTheRoom) {
+    const TempDir dir;
+    const std::string room = test::sourcePath("scenes/furnished-room.gltf");
+    nlohmann::json gltf = test::readJson(room);
+    int chairMesh = -1;
+    for (const nlohmann::json& node : gltf["nodes"])
+        if (node.value("name", "") == "chair") chairMesh = node.at("mesh");
+    ASSERT_GE(chairMesh, 0);
+    gltf["nodes"].push_back({{"name", "chair-copy"}, {"mesh", chairMesh}});
+    gltf["scenes"][0]["nodes"].push_back(gltf["nodes"].size() - 1);
+    const std::string doubled = (dir / "doubled.gltf").string();
+    { std::ofstream(doubled) << gltf.dump(); }
+
+    const std::string plainReport = (dir / "plain.json").string(), doubledReport = (dir / "doubled.json").string();
+    auto r = test::runCli("solve " + test::shellQuote(room) + " --report " + test::shellQuote(plainReport));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCli("solve " + test::shellQuote(doubled) + " --report " + test::shellQuote(doubledReport));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("'chair-copy'"), std::string::npos) << r.output;
+
+    const nlohmann::json plain = test::readJson(plainReport), twice = test::readJson(doubledReport);
+    // The duplicate is named in the report's warnings, with the count.
+    const nlohmann::json* warning = nullptr;
+    for (const nlohmann::json& w : twice.at("warnings"))
+        if (w.at("kind") == "duplicates") warning = &w;
+    ASSERT_NE(warning, nullptr) << twice["warnings"].dump();
+    EXPECT_EQ((*warning)["objects"], nlohmann::json({"chair", "chair-copy"}));
+    // Every polygon of the copy went: the whole chair, 865 polygons.
+    EXPECT_EQ((*warning)["amount"], 865.0);
+    EXPECT_EQ(twice.at("polygons"), plain.at("polygons"));
+
+    // Energy as sound as without the copy, and every object within 2%.
+    for (const nlohmann::json* report : {&plain, &twice}) {
+        const nlohmann::json& e = report->at("energy");
+        EXPECT_TRUE(e.at("created").is_number());
+        EXPECT_LE(e["created"].get<double>(), 1e-3 * e.at("emitted").get<double>());
+    }
+    std::map<std::string, nlohmann::json> doubledObjects;
+    for (const nlohmann::json& o : twice.at("objects")) doubledObjects[o.at("name")] = o.at("radiosity");
+    EXPECT_EQ(doubledObjects.count("chair-copy"), 0u);
+    for (const nlohmann::json& o : plain.at("objects")) {
+        const std::string name = o.at("name");
+        ASSERT_EQ(doubledObjects.count(name), 1u) << name;
+        for (int c = 0; c < 3; ++c) {
+            const double want = o["radiosity"][c], got = doubledObjects[name][c];
+            EXPECT_NEAR(got, want, 0.02 * std::abs(want) + 1e-9) << name << " channel " << c;
+        }
+    }
 }
 
 // --- Errors: one line, "<path>: <item>: <problem>". ---
