@@ -40,10 +40,23 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
     ImGui::Begin("Radiosity");
 
     ImGui::TextUnformatted(s.sceneName.c_str());
+    // Errors and warnings wrap: they are long lines that name objects and
+    // figures, and must be read whole.
+    const auto coloured = [](const ImVec4& colour, const std::string& text) {
+        ImGui::PushStyleColor(ImGuiCol_Text, colour);
+        ImGui::TextWrapped("%s", text.c_str());
+        ImGui::PopStyleColor();
+    };
     if (s.error)
-        ImGui::TextColored(ImVec4(1.0f, 0.3f, 0.3f, 1.0f), "%s", s.status.c_str());
+        coloured(ImVec4(1.0f, 0.3f, 0.3f, 1.0f), s.status);
     else
         ImGui::TextWrapped("%s", s.status.c_str());
+    // More than a couple of warnings (the energy guard may name several
+    // objects) scroll in a box of their own, so the controls stay in place.
+    const bool box = s.warnings.size() > 2;
+    if (box) ImGui::BeginChild("##warnings", ImVec2(0.0f, 6.0f * ImGui::GetTextLineHeightWithSpacing()), true);
+    for (const std::string& w : s.warnings) coloured(ImVec4(1.0f, 0.8f, 0.2f, 1.0f), "warning: " + w);
+    if (box) ImGui::EndChild();
     ImGui::Separator();
 
     a.targetFpsChanged = ImGui::SliderFloat("target fps", &c.targetFps, 1.0f, 60.0f, "%.0f");

@@ -12,8 +12,11 @@ namespace rad::ui {
 struct PanelState {
     std::string sceneName;
     std::string status;  // "solving: round 2 ..." / "solved" / an error
-    bool error = false;
+    bool error = false;  // status is an error, or why the solve did not converge
     bool solving = false;
+    // One line each: the import's (duplicates dropped) and the solve's
+    // (memory limit, energy guard), as the CLI prints them.
+    std::vector<std::string> warnings;
 
     // Statistics.
     std::size_t polygons = 0, elements = 0, links = 0, passiveLinks = 0;

@@ -18,6 +18,7 @@
 #include "cli/MotionOptions.h"
 #include "cli/RenderOutput.h"
 #include "cli/Report.h"
+#include "cli/Warnings.h"
 #include "radiosity/Gltf.h"
 
 namespace rad::cli {
@@ -35,7 +36,16 @@ struct AnimateSettings {
     bool force = false;
 };
 
-Report frameReport(int f, const FrameRecord& r) {
+// The frame against the from-scratch solve: the scene's figures, and each
+// object's over its own mean luminance.
+Report errorReport(const SolutionError& e, const Scene& scene) {
+    Report objects = Report::array();
+    for (const ObjectError& o : e.objects)
+        objects.push_back({{"name", scene.objects[o.object].name}, {"rms", o.rms}, {"max", o.max}, {"dark", o.dark}});
+    return {{"rms", e.rms}, {"max", e.max}, {"objects", objects}, {"worst_object_rms", e.worstObjectRms}};
+}
+
+Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
     const FrameStats& st = r.stats;
     Report frame{
         {"frame", f},
@@ -62,21 +72,22 @@ Report frameReport(int f, const FrameRecord& r) {
     };
     if (r.error) {
         frame["full_solve_seconds"] = *r.fullSolveSeconds;
-        frame["error_vs_full"] = {{"rms", r.error->rms}, {"max", r.error->max}};
+        frame["error_vs_full"] = errorReport(*r.error, scene);
     }
     return frame;
 }
 
-Report makeReport(const AnimateSettings& s, const AnimationRun& run) {
+Report makeReport(const AnimateSettings& s, const Scene& scene, const AnimationRun& run) {
     Report frames = Report::array();
-    std::vector<double> totals, fullTimes, errors;
+    std::vector<double> totals, fullTimes, errors, objectErrors;
     for (std::size_t i = 0; i < run.frames.size(); ++i) {
         const FrameRecord& r = run.frames[i];
-        frames.push_back(frameReport(int(i) + 1, r));
+        frames.push_back(frameReport(int(i) + 1, r, scene));
         totals.push_back(r.stats.totalSeconds);
         if (r.error) {
             fullTimes.push_back(*r.fullSolveSeconds);
             errors.push_back(r.error->rms);
+            objectErrors.push_back(r.error->worstObjectRms);
         }
     }
     Report summary{{"median_seconds", median(totals)},
@@ -85,6 +96,7 @@ Report makeReport(const AnimateSettings& s, const AnimationRun& run) {
         summary["median_full_solve_seconds"] = median(fullTimes);
         summary["full_over_update"] = median(fullTimes) / std::max(median(totals), 1e-12);
         summary["worst_rms"] = *std::max_element(errors.begin(), errors.end());
+        summary["worst_object_rms"] = *std::max_element(objectErrors.begin(), objectErrors.end());
     }
     return {
         {"scene", s.scene},
@@ -118,7 +130,9 @@ int animate(const AnimateSettings& s) {
         checkWritable((std::filesystem::path(*s.images) / "frame-0000.png").string(), s.force);
     }
     if (!std::filesystem::exists(s.scene)) throw std::runtime_error(s.scene + ": no such file");
-    const Scene scene = loadGltf(s.scene);
+    ImportNotes notes;
+    const Scene scene = loadGltf(s.scene, &notes);
+    printWarnings(importWarnings(notes));
 
     References references;
     const MotionRequest& request = s.motion;
@@ -145,12 +159,13 @@ int animate(const AnimateSettings& s) {
             renderToFile(engine.scene(), engine.snapshot(), ImageRequest{path, s.size, s.exposure});
         });
 
+    printWarnings(run.initial.warnings);
     for (std::size_t i = 0; i < run.frames.size(); ++i)
         if (const FrameRecord& r = run.frames[i]; r.error)
-            std::printf("frame %zu: full solve %.2f s, error rms %.4f max %.4f\n", i + 1, *r.fullSolveSeconds,
-                        r.error->rms, r.error->max);
+            std::printf("frame %zu: full solve %.2f s, error rms %.4f max %.4f, worst object rms %.4f\n", i + 1,
+                        *r.fullSolveSeconds, r.error->rms, r.error->max, r.error->worstObjectRms);
     if (s.report) {
-        writeReport(*s.report, makeReport(s, run));
+        writeReport(*s.report, makeReport(s, scene, run));
         std::printf("wrote %s\n", s.report->c_str());
     }
     if (s.images) std::printf("wrote %d images in %s\n", request.frames + 1, s.images->c_str());

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <utility>
 
 namespace rad::cli {
@@ -78,6 +79,40 @@ std::vector<double> parseNumbers(const std::string& text, std::size_t count) {
         throw CLI::ValidationError("expected " + std::to_string(count) + " comma-separated numbers, got '" + text +
                                    "'");
     return out;
+}
+
+std::size_t parseByteSize(const std::string& text) {
+    const auto bad = [&text]() {
+        return CLI::ValidationError("expected bytes with an optional K, M or G suffix (1K = 1024), got '" + text + "'");
+    };
+    std::string digits = text;
+    int shift = 0;
+    if (!digits.empty()) {
+        switch (digits.back()) {
+            case 'K': case 'k': shift = 10; break;
+            case 'M': case 'm': shift = 20; break;
+            case 'G': case 'g': shift = 30; break;
+            default: break;
+        }
+        if (shift > 0) digits.pop_back();
+    }
+    // Digits only: strtoull would accept "-1" (as a huge number), "+5" or " 5".
+    if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        throw bad();
+    errno = 0;
+    const unsigned long long value = std::strtoull(digits.c_str(), nullptr, 10);
+    if (errno == ERANGE || value > (std::numeric_limits<std::size_t>::max() >> shift))
+        throw CLI::ValidationError("'" + text + "' is more bytes than this machine can count");
+    return static_cast<std::size_t>(value) << shift;
+}
+
+std::string byteSizeText(std::size_t bytes) {
+    char text[32];
+    if (bytes >= (std::size_t(1) << 30))
+        std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(1 << 30));
+    else
+        std::snprintf(text, sizeof text, "%.0f MiB", double(bytes) / double(1 << 20));
+    return text;
 }
 
 ImageSize parseSize(const std::string& text, int lo, int hi) {

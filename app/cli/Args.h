@@ -48,6 +48,12 @@ std::vector<double> parseNumbers(const std::string& text, std::size_t count);
 // "a,b,c" -> {"a", "b", "c"}; "" -> {""}.
 std::vector<std::string> splitList(const std::string& text);
 
+// "SIZE": a count of bytes, digits only, with an optional K, M or G suffix
+// (either case; binary: 1K = 1024). Throws CLI::ValidationError.
+std::size_t parseByteSize(const std::string& text);
+// The other way round, for messages: "512 MiB", "3.2 GiB".
+std::string byteSizeText(std::size_t bytes);
+
 struct ImageSize {
     int width = 0;
     int height = 0;

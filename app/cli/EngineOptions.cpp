@@ -1,5 +1,7 @@
 #include "cli/EngineOptions.h"
 
+#include <string>
+
 #include "cli/Args.h"
 
 namespace rad::cli {
@@ -18,6 +20,16 @@ void addEngineOptions(CLI::App& command, EngineSettings& settings) {
         ->type_name("N")
         ->transform(integerIn(1, 10'000'000))
         ->capture_default_str();
+    // 0 asks the engine for its default, which depends on the machine: --help
+    // says what it is here and now.
+    const std::string memoryHelp =
+        "memory for links and elements; refinement stops there and the solve fails saying so. Bytes with an "
+        "optional K, M or G suffix (1K = 1024); 0 = auto: half of the available memory (here " +
+        byteSizeText(defaultMemoryLimit()) + ")";
+    command.add_option("--max-memory", memoryHelp)
+        ->type_name("SIZE")
+        ->each([&settings](const std::string& text) { settings.maxMemoryBytes = parseByteSize(text); })
+        ->default_str(std::to_string(settings.maxMemoryBytes));
 }
 
 }  // namespace rad::cli

@@ -7,8 +7,8 @@
 
 namespace rad::cli {
 
-// --epsilon, --min-area and --max-iterations, bound to `settings` (whose
-// values are the defaults --help shows).
+// --epsilon, --min-area, --max-iterations and --max-memory, bound to
+// `settings` (whose values are the defaults --help shows).
 void addEngineOptions(CLI::App& command, EngineSettings& settings);
 
 }  // namespace rad::cli

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "radiosity/Engine.h"
 #include "cli/Args.h"
@@ -14,6 +15,7 @@
 #include "cli/EngineOptions.h"
 #include "cli/RenderOutput.h"
 #include "cli/Report.h"
+#include "cli/Warnings.h"
 #include "radiosity/Gltf.h"
 
 namespace rad::cli {
@@ -31,7 +33,9 @@ double seconds(std::chrono::steady_clock::time_point a, std::chrono::steady_cloc
     return std::chrono::duration<double>(b - a).count();
 }
 
-Report makeReport(const SolveSettings& s, const Engine& engine, double loadSeconds, double totalSeconds) {
+// `warnings`: the import's, then the solve's.
+Report makeReport(const SolveSettings& s, const Engine& engine, const std::vector<Warning>& warnings,
+                  double loadSeconds, double totalSeconds) {
     const SolveStats& st = engine.stats();
     Report objects = Report::array();
     for (const ObjectRadiosity& o : engine.objectRadiosity())
@@ -50,6 +54,9 @@ Report makeReport(const SolveSettings& s, const Engine& engine, double loadSecon
         {"refine_rounds", st.refineRounds},
         {"converged", st.converged},
         {"message", st.message},
+        {"stopped_by", st.stoppedBy.empty() ? Report(nullptr) : Report(st.stoppedBy)},
+        {"unrefined_power_share", st.unrefinedPowerShare},
+        {"warnings", warningsReport(warnings)},
         {"seconds",
          {{"load", loadSeconds},
           {"hierarchy", st.hierarchySeconds},
@@ -62,7 +69,10 @@ Report makeReport(const SolveSettings& s, const Engine& engine, double loadSecon
           {"received", st.energy.received},
           {"absorbed", st.energy.absorbed},
           {"reflected", st.energy.reflected},
-          {"escaped", st.energy.escaped}}},
+          {"escaped", st.energy.escaped},
+          {"back_faces", st.energy.backFaces},
+          {"lost", st.energy.lost},
+          {"created", st.energy.created}}},
         {"objects", objects},
     };
 }
@@ -73,7 +83,10 @@ int solve(const SolveSettings& s) {
         if (!out.empty()) checkWritable(out, s.force);
 
     if (!std::filesystem::exists(s.scene)) throw std::runtime_error(s.scene + ": no such file");
-    Scene scene = loadGltf(s.scene);
+    ImportNotes notes;
+    Scene scene = loadGltf(s.scene, &notes);
+    std::vector<Warning> warnings = importWarnings(notes);
+    printWarnings(warnings);
     const auto loaded = std::chrono::steady_clock::now();
 
     Engine engine(std::move(scene), s.engine);
@@ -85,10 +98,18 @@ int solve(const SolveSettings& s) {
     const auto solved = std::chrono::steady_clock::now();
     std::printf("%zu polygons, %zu elements, %zu links, %zu p-links, %d sweeps, %.2f s\n", st.polygons, st.elements,
                 st.links, st.passiveLinks, st.iterations, seconds(start, solved));
-    if (!st.message.empty()) std::fprintf(stderr, "solve: %s\n", st.message.c_str());
+    printWarnings(st.warnings);
+    warnings.insert(warnings.end(), st.warnings.begin(), st.warnings.end());
+    // A solve that did not converge fails (exit 1) and says why; a converged
+    // one may still carry a note.
+    if (!st.converged)
+        std::fprintf(stderr, "error: the solve did not converge: %s\n",
+                     st.message.empty() ? "no reason given" : st.message.c_str());
+    else if (!st.message.empty())
+        std::fprintf(stderr, "solve: %s\n", st.message.c_str());
 
     if (s.report) {
-        writeReport(*s.report, makeReport(s, engine, seconds(start, loaded), seconds(start, solved)));
+        writeReport(*s.report, makeReport(s, engine, warnings, seconds(start, loaded), seconds(start, solved)));
         std::printf("wrote %s\n", s.report->c_str());
     }
     if (!s.image.path.empty() || s.exportPath) {

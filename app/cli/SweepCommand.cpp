@@ -16,6 +16,7 @@
 #include "cli/MotionOptions.h"
 #include "cli/RenderOutput.h"
 #include "cli/Report.h"
+#include "cli/Warnings.h"
 #include "image/AtomicFile.h"
 #include "plot/Plot.h"
 #include "radiosity/Gltf.h"
@@ -38,6 +39,8 @@ struct Row {
     std::optional<std::size_t> budget;
     std::optional<double> targetFps;
     double medianSeconds = 0.0, worstSeconds = 0.0, medianRms = 0.0, worstRms = 0.0, worstMax = 0.0;
+    // Over the frames, of each frame's worst object rms (SolutionError::worstObjectRms).
+    double medianWorstObjectRms = 0.0, worstObjectRms = 0.0;
     double medianSpent = 0.0, medianBudget = 0.0;
 };
 
@@ -53,7 +56,9 @@ int sweep(const SweepSettings& s) {
     for (const char* name : {"trade.json", "trade.csv", "trade.png", "trade.svg"})
         checkWritable((out / name).string(), force);
     if (!std::filesystem::exists(scenePath)) throw std::runtime_error(scenePath + ": no such file");
-    const Scene scene = loadGltf(scenePath);
+    ImportNotes notes;
+    const Scene scene = loadGltf(scenePath, &notes);
+    printWarnings(importWarnings(notes));
     std::filesystem::create_directories(out);
 
     References references;  // the from-scratch solves, shared by every run
@@ -63,18 +68,22 @@ int sweep(const SweepSettings& s) {
                      row.kind == "budget" ? budgetText(row.budget).c_str() : std::to_string(*row.targetFps).c_str());
         const AnimationRun run =
             runAnimation(scene, settings, request.object, request.motion, request.frames, control, &references);
-        std::vector<double> seconds, rms, spent, budget;
+        if (rows.empty()) printWarnings(run.initial.warnings);  // every run solves the same: say it once
+        std::vector<double> seconds, rms, objectRms, spent, budget;
         for (const FrameRecord& f : run.frames) {
             seconds.push_back(f.stats.totalSeconds);
             rms.push_back(f.error->rms);
+            objectRms.push_back(f.error->worstObjectRms);
             spent.push_back(double(f.stats.spent));
             budget.push_back(f.stats.budget == kUnlimited ? -1.0 : double(f.stats.budget));
             row.worstSeconds = std::max(row.worstSeconds, f.stats.totalSeconds);
             row.worstRms = std::max(row.worstRms, f.error->rms);
             row.worstMax = std::max(row.worstMax, f.error->max);
+            row.worstObjectRms = std::max(row.worstObjectRms, f.error->worstObjectRms);
         }
         row.medianSeconds = median(seconds);
         row.medianRms = median(rms);
+        row.medianWorstObjectRms = median(objectRms);
         row.medianSpent = median(spent);
         row.medianBudget = median(budget);
         std::printf("%-10s %-8s median frame %.4f s, worst %.4f s, median rms %.4f, worst rms %.4f\n", row.kind.c_str(),
@@ -87,7 +96,9 @@ int sweep(const SweepSettings& s) {
 
     // JSON and CSV.
     Report runs = Report::array();
-    std::string csv = "kind,budget,target_fps,target_seconds,median_seconds,worst_seconds,median_rms,worst_rms,worst_max,median_spent,median_budget\n";
+    std::string csv =
+        "kind,budget,target_fps,target_seconds,median_seconds,worst_seconds,median_rms,worst_rms,worst_max,"
+        "median_worst_object_rms,worst_object_rms,median_spent,median_budget\n";
     for (const Row& r : rows) {
         Report run{{"kind", r.kind}, {"budget", valueOrNull(r.budget)}};
         if (r.targetFps) {
@@ -99,15 +110,18 @@ int sweep(const SweepSettings& s) {
                     {"median_rms", r.medianRms},
                     {"worst_rms", r.worstRms},
                     {"worst_max", r.worstMax},
+                    {"median_worst_object_rms", r.medianWorstObjectRms},
+                    {"worst_object_rms", r.worstObjectRms},
                     {"median_spent", r.medianSpent},
                     {"median_budget", r.medianBudget}});
         runs.push_back(run);
         char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", r.kind.c_str(),
+        std::snprintf(line, sizeof line, "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", r.kind.c_str(),
                       r.kind == "budget" ? budgetText(r.budget).c_str() : "",
                       r.targetFps ? std::to_string(*r.targetFps).c_str() : "",
                       r.targetFps ? std::to_string(1.0 / *r.targetFps).c_str() : "", r.medianSeconds, r.worstSeconds,
-                      r.medianRms, r.worstRms, r.worstMax, r.medianSpent, r.medianBudget);
+                      r.medianRms, r.worstRms, r.worstMax, r.medianWorstObjectRms, r.worstObjectRms, r.medianSpent,
+                      r.medianBudget);
         csv += line;
     }
     writeReport((out / "trade.json").string(), {{"scene", scenePath},

@@ -17,6 +17,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "cli/Warnings.h"
 #include "image/Image.h"
 #include "render/CameraView.h"
 #include "render/MeshRenderer.h"
@@ -113,7 +114,10 @@ int runViewer(const ViewerOptions& options) {
     }
     if (!glfwVulkanSupported()) throw std::runtime_error("GLFW finds no Vulkan loader");
 
-    Scene scene = loadGltf(options.scene);
+    ImportNotes notes;
+    Scene scene = loadGltf(options.scene, &notes);
+    std::vector<std::string> importWarnings;
+    for (const Warning& w : cli::importWarnings(notes)) importWarnings.push_back(w.message);
     const Aabb sceneBounds = scene.bounds();
     const std::string sceneName = std::filesystem::path(options.scene).filename().string();
 
@@ -272,8 +276,11 @@ int runViewer(const ViewerOptions& options) {
             ui::PanelState ps;
             ps.sceneName = sceneName;
             ps.solving = snap->solving;
-            ps.error = !snap->error.empty();
-            if (ps.error) {
+            // A finished solve that did not converge (diverged, memory limit)
+            // shows its message as an error: the picture is not the answer.
+            const bool solved = !snap->solving && snap->error.empty() && snap->solve.polygons > 0;
+            ps.error = !snap->error.empty() || (solved && !snap->solve.converged);
+            if (!snap->error.empty()) {
                 ps.status = snap->error;
             } else if (snap->solving) {
                 ps.status = "solving: ";
@@ -281,6 +288,9 @@ int runViewer(const ViewerOptions& options) {
             } else {
                 ps.status = snap->progress;
             }
+            ps.warnings = importWarnings;
+            if (solved)
+                for (const Warning& w : snap->solve.warnings) ps.warnings.push_back(w.message);
             ps.polygons = snap->solve.polygons;
             ps.elements = snap->solve.elements;
             ps.links = snap->solve.links;

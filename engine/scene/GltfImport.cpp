@@ -8,9 +8,13 @@
 #include <cstring>
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <unordered_map>
+#include <utility>
 
 namespace rad {
 namespace {
@@ -139,6 +143,21 @@ std::optional<std::array<glm::dvec3, 4>> mergeToQuad(const WorldTriangle& a,
     }
     return std::nullopt;
 }
+
+// A cell of the grid that finds duplicate polygons (Importer::dropDuplicates).
+struct CellKey {
+    std::int64_t x, y, z;
+    bool operator==(const CellKey&) const = default;
+};
+struct CellKeyHash {
+    std::size_t operator()(const CellKey& c) const {
+        // Large odd multipliers spread neighbouring cells over the table.
+        const std::uint64_t h = static_cast<std::uint64_t>(c.x) * 0x9E3779B97F4A7C15ull ^
+                                static_cast<std::uint64_t>(c.y) * 0xC2B2AE3D27D4EB4Full ^
+                                static_cast<std::uint64_t>(c.z) * 0x165667B19E3779F9ull;
+        return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+};
 
 // A typed, range-checked view of an accessor's elements.
 struct AccessorView {
@@ -622,8 +641,8 @@ class Importer {
         return sum / static_cast<double>(texels);
     }
 
-    // Drops degenerate triangles, merges quads and lays the polygons out
-    // object by object.
+    // Drops degenerate triangles, merges quads, drops duplicate polygons and
+    // lays the polygons out object by object.
     Scene finish() {
         Aabb box;
         for (const PendingObject& o : pending_)
@@ -632,36 +651,142 @@ class Importer {
         const double diagonal2 = box.empty() ? 0.0 : glm::dot(box.extent(), box.extent());
         const double minArea = 1e-12 * diagonal2;
 
+        // Each pending object's polygons; Polygon::object is the pending
+        // index until the objects without polygons are left out.
+        std::vector<std::vector<Polygon>> polygons(pending_.size());
         std::size_t dropped = 0;
-        Scene scene;
-        scene.materials = std::move(materials_);
-        scene.camera = camera_;
-        for (PendingObject& pending : pending_) {
+        for (std::size_t i = 0; i < pending_.size(); ++i) {
             std::vector<WorldTriangle> kept;
-            for (const WorldTriangle& t : pending.triangles) {
+            for (const WorldTriangle& t : pending_[i].triangles) {
                 if (triangleArea(t) <= minArea) {
                     ++dropped;
                 } else {
                     kept.push_back(t);
                 }
             }
-            Object object = pending.object;
-            object.firstPolygon = static_cast<std::uint32_t>(scene.polygons.size());
-            object.polygonCount = 0;
-            const auto objectIndex = static_cast<std::uint32_t>(scene.objects.size());
-            appendPolygons(kept, objectIndex, scene.polygons);
-            object.polygonCount =
-                static_cast<std::uint32_t>(scene.polygons.size()) - object.firstPolygon;
-            if (object.polygonCount == 0) {
-                note(pending.item + ": no polygons, not imported as an object");
-                continue;
-            }
-            scene.objects.push_back(std::move(object));
+            appendPolygons(kept, static_cast<std::uint32_t>(i), polygons[i]);
         }
         notes_.degenerateTriangles += dropped;
         if (dropped > 0) note(std::to_string(dropped) + " degenerate triangle(s) dropped");
+        const std::vector<std::size_t> duplicates = dropDuplicates(polygons, 1e-9 * std::sqrt(diagonal2));
+
+        Scene scene;
+        scene.materials = std::move(materials_);
+        scene.camera = camera_;
+        for (std::size_t i = 0; i < pending_.size(); ++i) {
+            if (polygons[i].empty()) {
+                note(pending_[i].item + (duplicates[i] > 0 ? ": every polygon repeats an earlier one in place, "
+                                                             "not imported as an object"
+                                                           : ": no polygons, not imported as an object"));
+                continue;
+            }
+            Object object = pending_[i].object;
+            object.firstPolygon = static_cast<std::uint32_t>(scene.polygons.size());
+            object.polygonCount = static_cast<std::uint32_t>(polygons[i].size());
+            const auto objectIndex = static_cast<std::uint32_t>(scene.objects.size());
+            for (Polygon& p : polygons[i]) {
+                p.object = objectIndex;
+                scene.polygons.push_back(p);
+            }
+            scene.objects.push_back(std::move(object));
+        }
         if (scene.polygons.empty()) fail("scene", "contains no polygons");
         return scene;
+    }
+
+    // Drops every polygon that repeats an earlier one (in object order, then
+    // polygon order) in place and facing the same way: the same vertex
+    // count, and each vertex within `tolerance` of the other's after a
+    // cyclic shift. Reversed order faces the other way and is kept (a
+    // zero-thickness slab). Returns the count dropped per object; fills the
+    // notes.
+    //
+    // Linear time: kept polygons are hashed by their vertex mean on a grid of
+    // cells much larger than the tolerance. A repeat's mean lies within the
+    // tolerance of the original's, so only the cells that reach, usually
+    // one, are searched.
+    std::vector<std::size_t> dropDuplicates(std::vector<std::vector<Polygon>>& polygons, double tolerance) {
+        std::vector<std::size_t> droppedPer(polygons.size(), 0);
+        double largest = 0.0;
+        for (const auto& list : polygons)
+            for (const Polygon& p : list)
+                for (int k = 0; k < p.vertexCount; ++k)
+                    largest = std::max({largest, std::abs(p.vertices[k].x), std::abs(p.vertices[k].y),
+                                        std::abs(p.vertices[k].z)});
+        // 1024 tolerances wide, and coarse enough that cell indices stay far
+        // inside 64 bits (at most 2^40 cells across the largest coordinate).
+        const double cell = std::max({1024.0 * tolerance, largest * 0x1p-40, std::numeric_limits<double>::min()});
+        // How far a repeat's vertex mean can be from the original's: the
+        // tolerance, and the rounding of sums taken in another vertex order.
+        const double reach = tolerance + 16.0 * std::numeric_limits<double>::epsilon() * largest;
+        const auto meanOf = [](const Polygon& p) {
+            glm::dvec3 sum(0.0);
+            for (int k = 0; k < p.vertexCount; ++k) sum += p.vertices[k];
+            return sum / static_cast<double>(p.vertexCount);
+        };
+        const auto cellIndex = [cell](double x) { return static_cast<std::int64_t>(std::floor(x / cell)); };
+        const auto same = [tolerance](const Polygon& a, const Polygon& b) {
+            if (a.vertexCount != b.vertexCount) return false;
+            const int n = a.vertexCount;
+            for (int shift = 0; shift < n; ++shift) {
+                bool all = true;
+                for (int k = 0; k < n && all; ++k)
+                    all = glm::length(a.vertices[k] - b.vertices[(k + shift) % n]) <= tolerance;
+                if (all) return true;
+            }
+            return false;
+        };
+
+        struct Kept {
+            std::uint32_t object, index;
+        };
+        std::unordered_map<CellKey, std::vector<Kept>, CellKeyHash> kept;
+        std::size_t count = 0;
+        for (const auto& list : polygons) count += list.size();
+        kept.reserve(count);
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> pairIndex;  // (kept, dropped) -> notes
+        for (std::uint32_t o = 0; o < polygons.size(); ++o) {
+            std::vector<Polygon> keep;
+            // The object of the earlier polygon that `p` repeats, if any: one
+            // in the cells its mean can reach.
+            const auto findOriginal = [&](const Polygon& p, const glm::dvec3& mean) -> std::optional<std::uint32_t> {
+                for (std::int64_t x = cellIndex(mean.x - reach); x <= cellIndex(mean.x + reach); ++x)
+                    for (std::int64_t y = cellIndex(mean.y - reach); y <= cellIndex(mean.y + reach); ++y)
+                        for (std::int64_t z = cellIndex(mean.z - reach); z <= cellIndex(mean.z + reach); ++z) {
+                            const auto found = kept.find(CellKey{x, y, z});
+                            if (found == kept.end()) continue;
+                            for (const Kept& k : found->second)
+                                if (same(k.object == o ? keep[k.index] : polygons[k.object][k.index], p))
+                                    return k.object;
+                        }
+                return std::nullopt;
+            };
+            for (const Polygon& p : polygons[o]) {
+                const glm::dvec3 mean = meanOf(p);
+                const std::optional<std::uint32_t> original = findOriginal(p, mean);
+                if (!original) {
+                    kept[CellKey{cellIndex(mean.x), cellIndex(mean.y), cellIndex(mean.z)}].push_back(
+                        {o, static_cast<std::uint32_t>(keep.size())});
+                    keep.push_back(p);
+                    continue;
+                }
+                ++droppedPer[o];
+                const auto [at, added] = pairIndex.try_emplace({*original, o}, notes_.duplicates.size());
+                if (added)
+                    notes_.duplicates.push_back(
+                        {pending_[*original].object.name, pending_[o].object.name, 0});
+                ++notes_.duplicates[at->second].count;
+            }
+            polygons[o] = std::move(keep);
+        }
+        std::size_t total = 0;
+        for (std::size_t n : droppedPer) total += n;
+        notes_.duplicatePolygons += total;
+        if (total > 0)
+            note(std::to_string(total) + " duplicate polygon(s) dropped (the same vertices, facing the same way, as an "
+                                         "earlier polygon) between " +
+                 std::to_string(notes_.duplicates.size()) + " pair(s) of objects");
+        return droppedPer;
     }
 
     void appendPolygons(const std::vector<WorldTriangle>& tris, std::uint32_t object,

@@ -124,6 +124,33 @@ TEST_F(ArgsTest, FlagsTakeNoValueAndOptionsNeedOne) {
     EXPECT_NE(parse(app, {"--frobnicate"}).find("--frobnicate"), std::string::npos);
 }
 
+TEST(ByteSize, BytesWithABinarySuffix) {
+    EXPECT_EQ(parseByteSize("0"), 0u);
+    EXPECT_EQ(parseByteSize("4096"), 4096u);
+    EXPECT_EQ(parseByteSize("1K"), 1024u);
+    EXPECT_EQ(parseByteSize("3k"), 3u * 1024);
+    EXPECT_EQ(parseByteSize("1M"), std::size_t(1) << 20);
+    EXPECT_EQ(parseByteSize("512m"), std::size_t(512) << 20);
+    EXPECT_EQ(parseByteSize("2G"), std::size_t(2) << 30);
+    EXPECT_EQ(parseByteSize("010"), 10u);  // decimal, not octal
+    for (const char* bad : {"", "K", "-1", "+1", " 1", "1.5M", "1T", "1MB", "1 M", "0x10", "inf"}) {
+        try {
+            parseByteSize(bad);
+            ADD_FAILURE() << "accepted '" << bad << "'";
+        } catch (const CLI::ValidationError& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      std::string("expected bytes with an optional K, M or G suffix (1K = 1024), got '") + bad + "'");
+        }
+    }
+    EXPECT_THROW(parseByteSize("99999999999999999999"), CLI::ValidationError);
+    EXPECT_THROW(parseByteSize("99999999999G"), CLI::ValidationError);
+}
+
+TEST(ByteSize, ReadsBack) {
+    EXPECT_EQ(byteSizeText(std::size_t(512) << 20), "512 MiB");
+    EXPECT_EQ(byteSizeText(std::size_t(3) << 30), "3.0 GiB");
+}
+
 TEST(SplitList, KeepsEmptyItems) {
     EXPECT_EQ(splitList("0,30,inf"), (std::vector<std::string>{"0", "30", "inf"}));
     EXPECT_EQ(splitList(""), (std::vector<std::string>{""}));

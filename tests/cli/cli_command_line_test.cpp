@@ -32,18 +32,18 @@ const std::vector<CommandOptions>& everyCommand() {
     static const std::vector<CommandOptions> commands{
         {"render", {"--image", "--size", "--exposure", "--force"}, {"--exposure EV=0"}},
         {"solve",
-         {"--epsilon", "--min-area", "--max-iterations", "--report", "--image", "--size", "--exposure", "--export",
-          "--force"},
-         {"--epsilon E=5e-05", "--max-iterations N=5000", "--exposure EV=0"}},
+         {"--epsilon", "--min-area", "--max-iterations", "--max-memory", "--report", "--image", "--size", "--exposure",
+          "--export", "--force"},
+         {"--epsilon E=5e-05", "--max-iterations N=5000", "--max-memory SIZE=0", "--exposure EV=0"}},
         {"animate",
          {"--object", "--frames", "--translate", "--rotate", "--budget", "--target-fps", "--compare-full", "--report",
-          "--images", "--size", "--exposure", "--force", "--epsilon", "--min-area", "--max-iterations"},
-         {"--epsilon E=5e-05", "--max-iterations N=5000", "--exposure EV=0"}},
+          "--images", "--size", "--exposure", "--force", "--epsilon", "--min-area", "--max-iterations", "--max-memory"},
+         {"--epsilon E=5e-05", "--max-iterations N=5000", "--max-memory SIZE=0", "--exposure EV=0"}},
         {"sweep",
          {"--object", "--frames", "--translate", "--rotate", "--budgets", "--target-fps", "--out", "--force",
-          "--epsilon", "--min-area", "--max-iterations"},
+          "--epsilon", "--min-area", "--max-iterations", "--max-memory"},
          {"--budgets B1,B2,...=0,30,100,330,1000,inf", "--target-fps F1,F2,...=5,10,30,60", "--epsilon E=5e-05",
-          "--max-iterations N=5000"}},
+          "--max-iterations N=5000", "--max-memory SIZE=0"}},
     };
     return commands;
 }
@@ -81,6 +81,10 @@ TEST(CliCommandLine, MistakesExitWith2AndOneLineNamingThem) {
         {"solve " + scene + " --epsilon 0", "--epsilon"},
         {"solve " + scene + " --min-area -1", "--min-area"},
         {"solve " + scene + " --max-iterations 0", "--max-iterations"},
+        {"solve " + scene + " --max-memory lots", "--max-memory"},
+        {"solve " + scene + " --max-memory -1M", "--max-memory"},
+        {"solve " + scene + " --max-memory 1.5G", "--max-memory"},
+        {"solve " + scene + " --max-memory", "--max-memory"},
         {"solve " + scene + " --image x.jpg", "--image"},
         {"solve " + scene + " --force=1", "force"},
         {"animate " + scene + " --frames 2 --translate 0,0,0.1", "--object"},
@@ -94,10 +98,12 @@ TEST(CliCommandLine, MistakesExitWith2AndOneLineNamingThem) {
         {"animate " + scene + move + " --target-fps 0", "--target-fps"},
         {"animate " + scene + move + " --budget 3 --target-fps 30", "--target-fps"},
         {"animate " + scene + move + " --size 64", "--size"},
+        {"animate " + scene + move + " --max-memory 1T", "--max-memory"},
         {"sweep " + scene + move, "--out"},
         {"sweep " + scene + move + " --out " + out + " --budgets 0,x", "--budgets"},
         {"sweep " + scene + move + " --out " + out + " --budgets 0,,inf", "--budgets"},
         {"sweep " + scene + move + " --out " + out + " --target-fps 30,0", "--target-fps"},
+        {"sweep " + scene + move + " --out " + out + " --max-memory 12KB", "--max-memory"},
     };
     for (const auto& [args, named] : cases) {
         const test::RunResult r = runCli(args);

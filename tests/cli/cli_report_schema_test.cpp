@@ -68,8 +68,8 @@ void collect(const json& value, const std::string& path, std::map<std::string, s
 }
 
 // Whether `value` has one of the types in `type`: "integer", "number",
-// "string", "boolean", "null", "object", "array of objects", "array of N
-// numbers", joined by " or ".
+// "string", "boolean", "null", "object", "array of objects", "array of
+// strings", "array of N numbers", joined by " or ".
 bool hasType(const json& value, const std::string& type) {
     std::istringstream alternatives(type);
     std::string word, one;
@@ -91,6 +91,9 @@ bool hasType(const json& value, const std::string& type) {
         if (kind == "array of objects" && value.is_array() &&
             std::all_of(value.begin(), value.end(), [](const json& e) { return e.is_object(); }))
             return true;
+        if (kind == "array of strings" && value.is_array() &&
+            std::all_of(value.begin(), value.end(), [](const json& e) { return e.is_string(); }))
+            return true;
         if (kind.starts_with("array of ") && kind.ends_with(" numbers") && value.is_array() &&
             std::to_string(value.size()) + " numbers" == kind.substr(9) &&
             std::all_of(value.begin(), value.end(), [](const json& e) { return e.is_number(); }))
@@ -99,11 +102,13 @@ bool hasType(const json& value, const std::string& type) {
     return false;
 }
 
-void expectReportMatchesReadme(const std::string& reportPath, const std::string& heading) {
+// Several reports of one command count together: a key written by any of
+// them is written.
+void expectReportMatchesReadme(const std::vector<std::string>& reportPaths, const std::string& heading) {
     const Schema schema = readmeTable(heading);
     ASSERT_FALSE(schema.empty()) << "README.md has no key table under '" << heading << "'";
     std::map<std::string, std::vector<json>> written;
-    collect(test::readJson(reportPath), "", written);
+    for (const std::string& path : reportPaths) collect(test::readJson(path), "", written);
     for (const auto& [path, values] : written) {
         const auto row = schema.find(path);
         if (row == schema.end()) {
@@ -121,10 +126,14 @@ void expectReportMatchesReadme(const std::string& reportPath, const std::string&
 
 TEST(CliReportSchema, SolveReportMatchesTheReadme) {
     const test::TempDir dir;
-    const std::string report = (dir / "solve.json").string();
-    const auto r = runCli("solve " + shellQuote(kCornell) + " --report " + shellQuote(report));
+    const std::string report = (dir / "solve.json").string(), limited = (dir / "limited.json").string();
+    auto r = runCli("solve " + shellQuote(kCornell) + " --report " + shellQuote(report));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    expectReportMatchesReadme(report, "### The `solve` report");
+    // A memory limit hit adds what a converged solve leaves empty: a
+    // warning, stopped_by.
+    r = runCli("solve " + shellQuote(kCornell) + " --max-memory 1M --report " + shellQuote(limited));
+    ASSERT_EQ(r.exitCode, 1) << r.output;
+    expectReportMatchesReadme({report, limited}, "### The `solve` report");
 }
 
 TEST(CliReportSchema, AnimateReportMatchesTheReadme) {
@@ -135,7 +144,7 @@ TEST(CliReportSchema, AnimateReportMatchesTheReadme) {
                           " --object short-block --frames 2 --translate 0,0,0.05 --compare-full --target-fps 30"
                           " --report " + shellQuote(report));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    expectReportMatchesReadme(report, "### The `animate` report");
+    expectReportMatchesReadme({report}, "### The `animate` report");
 }
 
 TEST(CliReportSchema, SweepReportMatchesTheReadme) {
@@ -146,7 +155,7 @@ TEST(CliReportSchema, SweepReportMatchesTheReadme) {
                           " --object short-block --frames 1 --translate 0,0,0.05 --budgets 0,inf --target-fps 30"
                           " --out " + shellQuote(out));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    expectReportMatchesReadme(out + "/trade.json", "### The `sweep` report");
+    expectReportMatchesReadme({out + "/trade.json"}, "### The `sweep` report");
 }
 
 }  // namespace

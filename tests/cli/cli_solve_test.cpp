@@ -8,10 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "image/Image.h"
 #include "radiosity/Settings.h"
@@ -46,6 +49,19 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
     }
     EXPECT_EQ(jsonAt(json, "/converged"), true);
     EXPECT_EQ(jsonAt(json, "/message"), "");
+    // Nothing stopped refinement; no duplicates in the box. Any warning is
+    // one line with the four keys.
+    EXPECT_TRUE(json.contains("stopped_by") && json["stopped_by"].is_null());
+    EXPECT_EQ(jsonAt(json, "/unrefined_power_share"), 0.0);
+    ASSERT_TRUE(jsonAt(json, "/warnings").is_array());
+    for (const nlohmann::json& w : json["warnings"]) {
+        EXPECT_NE(w.at("kind"), "duplicates");
+        EXPECT_NE(w.at("kind"), "memory_limit");
+        EXPECT_TRUE(w.at("objects").is_array());
+        EXPECT_TRUE(w.at("amount").is_number());
+        EXPECT_EQ(w.at("message").get<std::string>().find('\n'), std::string::npos);
+        EXPECT_NE(r.output.find("warning: " + w["message"].get<std::string>()), std::string::npos) << r.output;
+    }
     // The phases are parts of the whole.
     double phases = 0.0;
     for (const char* key : {"/seconds/load", "/seconds/hierarchy", "/seconds/refine", "/seconds/solve"}) {
@@ -61,12 +77,17 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
               jsonAt(json, "/memory_bytes/elements").get<std::size_t>() + jsonAt(json, "/memory_bytes/links").get<std::size_t>());
     // Energy bookkeeping: absorbed + escaped = emitted, reflected + absorbed = received.
     const nlohmann::json& energy = json.at("energy");
-    for (const char* key : {"emitted", "received", "absorbed", "reflected", "escaped"})
+    for (const char* key : {"emitted", "received", "absorbed", "reflected", "escaped", "back_faces", "lost", "created"})
         ASSERT_TRUE(energy.contains(key) && energy[key].is_number()) << key;
     const double emitted = energy["emitted"], absorbed = energy["absorbed"], reflected = energy["reflected"],
-                 received = energy["received"], escaped = energy["escaped"];
+                 received = energy["received"], escaped = energy["escaped"], backFaces = energy["back_faces"],
+                 lost = energy["lost"], created = energy["created"];
     EXPECT_GT(emitted, 0.0);
     EXPECT_NEAR(reflected + absorbed, received, 1e-9 * received);
+    // The README's balance: emitted = absorbed + escaped + back_faces + lost.
+    EXPECT_NEAR(absorbed + escaped + backFaces + lost, emitted, 1e-9 * emitted);
+    EXPECT_GE(backFaces, 0.0);
+    EXPECT_NEAR(created, std::max(0.0, absorbed - emitted), 1e-12 * emitted);
     // Escaped light is measured by rays; what the links deliver and what
     // leaves never add to more than was emitted (energy.lost is the rest).
     EXPECT_LE(absorbed + escaped, emitted * (1.0 + 1e-3));
@@ -123,6 +144,47 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
 
     // The export holds COLOR_0.
     EXPECT_NE(test::readFile(glb).find("COLOR_0"), std::string::npos);
+}
+
+// Every number in a report is finite: writeReport turns a non-finite one
+// into null, so no value may be null.
+void expectNoNull(const nlohmann::json& value, const std::string& path = "") {
+    EXPECT_FALSE(value.is_null()) << path << " is null";
+    if (value.is_object())
+        for (const auto& [key, member] : value.items()) expectNoNull(member, path + "/" + key);
+    if (value.is_array())
+        for (std::size_t i = 0; i < value.size(); ++i) expectNoNull(value[i], path + "/" + std::to_string(i));
+}
+
+// Issue 11: a memory limit hit is not a converged solve. A tiny --max-memory
+// stops refinement; the solve says so everywhere and exits 1.
+TEST(CliSolve, ATinyMemoryLimitFailsAndSaysSo) {
+    const test::TempDir dir;
+    const std::string report = (dir / "r.json").string(), png = (dir / "b.png").string();
+    const auto r = runCli("solve " + shellQuote(kCornell) + " --max-memory 1M --report " + shellQuote(report) +
+                          " --image " + shellQuote(png) + " --size 32x32");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("warning: refinement stopped at the memory limit"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("error: the solve did not converge: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("--max-memory"), std::string::npos) << r.output;  // how to raise it
+    // The report and the image are still written: what there is, said to be incomplete.
+    EXPECT_TRUE(std::filesystem::exists(png));
+    const nlohmann::json json = test::readJson(report);
+    EXPECT_EQ(jsonAt(json, "/converged"), false);
+    EXPECT_EQ(jsonAt(json, "/stopped_by"), "memory_limit");
+    ASSERT_TRUE(jsonAt(json, "/message").is_string());
+    EXPECT_NE(json["message"].get<std::string>().find("memory limit"), std::string::npos) << json["message"];
+    ASSERT_TRUE(jsonAt(json, "/unrefined_power_share").is_number());
+    const double share = json["unrefined_power_share"];
+    EXPECT_GT(share, 0.0);
+    const nlohmann::json* warning = nullptr;
+    for (const nlohmann::json& w : json.at("warnings"))
+        if (w.at("kind") == "memory_limit") warning = &w;
+    ASSERT_NE(warning, nullptr) << json["warnings"].dump();
+    EXPECT_EQ((*warning)["amount"], share);
+    EXPECT_LE(jsonAt(json, "/memory_bytes/total"), 1 << 20);
+    expectNoNull(json);
+    EXPECT_LE(jsonAt(json, "/energy/created"), 1e-3 * json["energy"]["emitted"].get<double>());
 }
 
 TEST(CliSolve, BadSettingsAndMissingFilesFailWithOneLine) {

@@ -1,17 +1,22 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "radiosity/Gltf.h"
+#include "support/Cli.h"
 #include "support/TempDir.h"
+#include "support/TestScenes.h"
 
 namespace rad {
 namespace {
@@ -277,8 +282,10 @@ TEST(GltfImport, SmallIndexTypesAndNonIndexedLoad) {
     std::vector<glm::vec3> soup;
     for (std::uint32_t i : kRectIndices) soup.push_back(kRect[i]);
     g.addMesh("Soup", g.addPositions(soup), -1, grey);
+    // Apart, or the second and third would be dropped as repeats of the first.
     for (int m = 0; m < 3; ++m)
-        g.addNode("\"name\":\"n" + std::to_string(m) + "\",\"mesh\":" + std::to_string(m));
+        g.addNode("\"name\":\"n" + std::to_string(m) + "\",\"mesh\":" + std::to_string(m) +
+                  ",\"translation\":[0,0," + std::to_string(m) + "]");
     ImportNotes notes;
     const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
     ASSERT_EQ(s.polygons.size(), 3u);
@@ -433,7 +440,9 @@ TEST(GltfImport, MaterialsFactorsEmissiveStrengthAndDefault) {
     g.addMesh("L", pos, idx, lamp);
     g.addMesh("G", pos, idx, glow);
     g.addMesh("D", pos, idx, -1);
-    for (int m = 0; m < 4; ++m) g.addNode("\"mesh\":" + std::to_string(m));
+    // Apart, or all but the first would be dropped as repeats.
+    for (int m = 0; m < 4; ++m)
+        g.addNode("\"mesh\":" + std::to_string(m) + ",\"translation\":[0,0," + std::to_string(m) + "]");
     const Scene s = loadGltf(path(g.writeEmbedded(dir)));
     ASSERT_EQ(s.polygons.size(), 4u);
     const auto materialOf = [&](std::size_t polygon) {
@@ -532,9 +541,10 @@ TEST(GltfImport, ExtrasDynamicFlag) {
     TempDir dir;
     GltfBuilder g;
     addRectMesh(g, "Rect", g.addGrey("Grey"));
+    // Apart, or the last two would be dropped as repeats of the first.
     g.addNode("\"name\":\"Mover\",\"mesh\":0,\"extras\":{\"dynamic\":true}");
-    g.addNode("\"name\":\"Still\",\"mesh\":0,\"extras\":{\"dynamic\":false}");
-    g.addNode("\"name\":\"Plain\",\"mesh\":0,\"extras\":{\"other\":1}");
+    g.addNode("\"name\":\"Still\",\"mesh\":0,\"translation\":[0,0,1],\"extras\":{\"dynamic\":false}");
+    g.addNode("\"name\":\"Plain\",\"mesh\":0,\"translation\":[0,0,2],\"extras\":{\"other\":1}");
     const Scene s = loadGltf(path(g.writeEmbedded(dir)));
     ASSERT_EQ(s.objects.size(), 3u);
     EXPECT_TRUE(s.objects[*s.findObject("Mover")].dynamic);
@@ -546,7 +556,9 @@ TEST(GltfImport, RepeatedNamesGetSuffixes) {
     TempDir dir;
     GltfBuilder g;
     addRectMesh(g, "Rect", g.addGrey("Grey"));
-    for (int i = 0; i < 3; ++i) g.addNode("\"name\":\"Box\",\"mesh\":0");
+    // Apart, or the last two would be dropped as repeats of the first.
+    for (int i = 0; i < 3; ++i)
+        g.addNode("\"name\":\"Box\",\"mesh\":0,\"translation\":[0,0," + std::to_string(i) + "]");
     const Scene s = loadGltf(path(g.writeEmbedded(dir)));
     ASSERT_EQ(s.objects.size(), 3u);
     EXPECT_EQ(s.objects[0].name, "Box");
@@ -670,6 +682,194 @@ TEST(GltfImport, UnsupportedThingsAreNotedNotFatal) {
     EXPECT_TRUE(noted("KHR_texture_transform"));
     EXPECT_TRUE(noted("doubleSided"));
     EXPECT_TRUE(noted("orthographic"));
+}
+
+// --- Duplicate polygons (issue 11): dropped at import, counted and named. ---
+
+// A note line that contains `word`, or "".
+std::string noteWith(const ImportNotes& notes, const std::string& word) {
+    for (const std::string& line : notes.lines)
+        if (line.find(word) != std::string::npos) return line;
+    return "";
+}
+
+TEST(GltfImportDuplicates, AnObjectRepeatedInPlaceByASecondNodeIsDropped) {
+    TempDir dir;
+    GltfBuilder g;
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint32_t> idx;
+    cubeGeometry(pos, idx);
+    g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), g.addGrey("Grey"));
+    g.addNode("\"name\":\"Box\",\"mesh\":0");
+    g.addNode("\"name\":\"Box-copy\",\"mesh\":0");  // the same mesh, the same place
+    // Off by 1e-12 m: rounding, within 1e-9 of the scene's size (about 1.7 m).
+    g.addNode("\"name\":\"Box-rounded\",\"mesh\":0,\"translation\":[1e-12,0,0]");
+    // Off by 1 micrometre: a different box, kept.
+    g.addNode("\"name\":\"Box-apart\",\"mesh\":0,\"translation\":[1e-6,0,0]");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+
+    EXPECT_EQ(notes.duplicatePolygons, 12u);
+    ASSERT_EQ(notes.duplicates.size(), 2u);
+    EXPECT_EQ(notes.duplicates[0].kept, "Box");
+    EXPECT_EQ(notes.duplicates[0].dropped, "Box-copy");
+    EXPECT_EQ(notes.duplicates[0].count, 6u);
+    EXPECT_EQ(notes.duplicates[1].kept, "Box");
+    EXPECT_EQ(notes.duplicates[1].dropped, "Box-rounded");
+    EXPECT_EQ(notes.duplicates[1].count, 6u);
+    // One summary line with the count; the emptied objects are not imported.
+    EXPECT_NE(noteWith(notes, "12 duplicate polygon(s) dropped"), "");
+    EXPECT_NE(noteWith(notes, "'Box-copy': every polygon repeats"), "");
+    ASSERT_EQ(s.objects.size(), 2u);
+    EXPECT_EQ(s.objects[0].name, "Box");
+    EXPECT_EQ(s.objects[1].name, "Box-apart");
+    EXPECT_EQ(s.objects[0].polygonCount, 6u);
+    EXPECT_EQ(s.objects[1].polygonCount, 6u);
+    EXPECT_EQ(s.objects[1].firstPolygon, 6u);
+    ASSERT_EQ(s.polygons.size(), 12u);
+    for (std::uint32_t p = 0; p < s.polygons.size(); ++p) EXPECT_EQ(s.polygons[p].object, p / 6) << p;
+}
+
+TEST(GltfImportDuplicates, ARepeatStartingAtAnotherVertexIsADuplicate) {
+    TempDir dir;
+    GltfBuilder g;
+    const int grey = g.addGrey("Grey");
+    addRectMesh(g, "Rect", grey);
+    // The same rectangle with its triangles listed from vertex 1: it merges
+    // into the quad (1,2,3,0), the same cyclic order from another start.
+    // With another rectangle beside it, which stays.
+    std::vector<glm::vec3> pos = kRect;
+    for (const glm::vec3& v : kRect) pos.push_back(v + glm::vec3(5, 0, 0));
+    g.addMesh("Shifted", g.addPositions(pos), g.addIndices({1, 2, 3, 1, 3, 0, 4, 5, 6, 4, 6, 7}), grey);
+    g.addNode("\"name\":\"Floor\",\"mesh\":0");
+    g.addNode("\"name\":\"Patch\",\"mesh\":1");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    EXPECT_EQ(notes.duplicatePolygons, 1u);
+    ASSERT_EQ(notes.duplicates.size(), 1u);
+    EXPECT_EQ(notes.duplicates[0].kept, "Floor");
+    EXPECT_EQ(notes.duplicates[0].dropped, "Patch");
+    ASSERT_EQ(s.objects.size(), 2u);  // Patch keeps its other rectangle
+    EXPECT_EQ(s.objects[1].polygonCount, 1u);
+    EXPECT_TRUE(hasVertex(s, glm::dvec3(7, 3, 0)));
+}
+
+TEST(GltfImportDuplicates, TheTwoFacesOfAZeroThicknessSlabAreKept) {
+    TempDir dir;
+    GltfBuilder g;
+    const int grey = g.addGrey("Grey");
+    addRectMesh(g, "Top", grey);
+    // The same rectangle wound the other way: it faces -Z.
+    g.addMesh("Bottom", g.addPositions(kRect), g.addIndices({0, 2, 1, 0, 3, 2}), grey);
+    g.addNode("\"name\":\"Top\",\"mesh\":0");
+    g.addNode("\"name\":\"Bottom\",\"mesh\":1");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    EXPECT_EQ(notes.duplicatePolygons, 0u);
+    EXPECT_TRUE(notes.duplicates.empty());
+    EXPECT_EQ(noteWith(notes, "duplicate"), "");
+    ASSERT_EQ(s.polygons.size(), 2u);
+    EXPECT_NEAR(glm::dot(s.polygons[0].normal(), s.polygons[1].normal()), -1.0, 1e-12);
+}
+
+TEST(GltfImportDuplicates, RepeatsWithinOneObjectAreFoundToo) {
+    TempDir dir;
+    GltfBuilder g;
+    // Two triangles, the second listed twice (the third from a rotated start).
+    const std::vector<glm::vec3> pos = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {3, 0, 0}, {4, 0, 0}, {3, 1, 0}};
+    g.addMesh("Tris", g.addPositions(pos), g.addIndices({0, 1, 2, 3, 4, 5, 4, 5, 3}), g.addGrey("Grey"));
+    g.addNode("\"name\":\"Tris\",\"mesh\":0");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    EXPECT_EQ(s.polygons.size(), 2u);
+    ASSERT_EQ(notes.duplicates.size(), 1u);
+    EXPECT_EQ(notes.duplicates[0].kept, "Tris");
+    EXPECT_EQ(notes.duplicates[0].dropped, "Tris");
+    EXPECT_EQ(notes.duplicates[0].count, 1u);
+}
+
+// 100k polygons, half of them a second node's copy: linear time (the grid
+// hash), well under a second in Release.
+TEST(GltfImportDuplicates, AHundredThousandPolygonsAreQuick) {
+    TempDir dir;
+    GltfBuilder g;
+    constexpr int n = 224;  // 224^2 = 50,176 quads
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint32_t> idx;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) pos.push_back({0.01f * float(i), 0.01f * float(j), 0.0f});
+    const auto at = [](int i, int j) { return std::uint32_t(i * (n + 1) + j); };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            for (std::uint32_t k : {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)})
+                idx.push_back(k);
+    g.addMesh("Grid", g.addPositions(pos), g.addIndices(idx), g.addGrey("Grey"));
+    g.addNode("\"name\":\"Grid\",\"mesh\":0");
+    g.addNode("\"name\":\"Grid-again\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    const auto start = std::chrono::steady_clock::now();
+    ImportNotes notes;
+    const Scene s = loadGltf(path(file), &notes);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(s.polygons.size(), std::size_t(n) * n);
+    EXPECT_EQ(notes.duplicatePolygons, std::size_t(n) * n);
+    // The whole import; generous for sanitizer builds and a busy machine.
+    EXPECT_LT(seconds, 20.0);
+    std::printf("imported %zu polygons and dropped %zu duplicates in %.2f s\n", 2 * s.polygons.size(),
+                notes.duplicatePolygons, seconds);
+}
+
+// The issue's test: furniture duplicated in place in a furnished room gives
+// the room's answer. A second node shows the chair's mesh again.
+TEST(GltfImportDuplicates, AFurnishedRoomWithADuplicatedChairSolvesLikeTheRoom) {
+    const TempDir dir;
+    const std::string room = test::sourcePath("scenes/furnished-room.gltf");
+    nlohmann::json gltf = test::readJson(room);
+    int chairMesh = -1;
+    for (const nlohmann::json& node : gltf["nodes"])
+        if (node.value("name", "") == "chair") chairMesh = node.at("mesh");
+    ASSERT_GE(chairMesh, 0);
+    gltf["nodes"].push_back({{"name", "chair-copy"}, {"mesh", chairMesh}});
+    gltf["scenes"][0]["nodes"].push_back(gltf["nodes"].size() - 1);
+    const std::string doubled = (dir / "doubled.gltf").string();
+    { std::ofstream(doubled) << gltf.dump(); }
+
+    const std::string plainReport = (dir / "plain.json").string(), doubledReport = (dir / "doubled.json").string();
+    auto r = test::runCli("solve " + test::shellQuote(room) + " --report " + test::shellQuote(plainReport));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCli("solve " + test::shellQuote(doubled) + " --report " + test::shellQuote(doubledReport));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("'chair-copy'"), std::string::npos) << r.output;
+
+    const nlohmann::json plain = test::readJson(plainReport), twice = test::readJson(doubledReport);
+    // The duplicate is named in the report's warnings, with the count.
+    const nlohmann::json* warning = nullptr;
+    for (const nlohmann::json& w : twice.at("warnings"))
+        if (w.at("kind") == "duplicates") warning = &w;
+    ASSERT_NE(warning, nullptr) << twice["warnings"].dump();
+    EXPECT_EQ((*warning)["objects"], nlohmann::json({"chair", "chair-copy"}));
+    // Every polygon of the copy went: the whole chair, 865 polygons.
+    EXPECT_EQ((*warning)["amount"], 865.0);
+    EXPECT_EQ(twice.at("polygons"), plain.at("polygons"));
+
+    // Energy as sound as without the copy, and every object within 2%.
+    for (const nlohmann::json* report : {&plain, &twice}) {
+        const nlohmann::json& e = report->at("energy");
+        EXPECT_TRUE(e.at("created").is_number());
+        EXPECT_LE(e["created"].get<double>(), 1e-3 * e.at("emitted").get<double>());
+    }
+    std::map<std::string, nlohmann::json> doubledObjects;
+    for (const nlohmann::json& o : twice.at("objects")) doubledObjects[o.at("name")] = o.at("radiosity");
+    EXPECT_EQ(doubledObjects.count("chair-copy"), 0u);
+    for (const nlohmann::json& o : plain.at("objects")) {
+        const std::string name = o.at("name");
+        ASSERT_EQ(doubledObjects.count(name), 1u) << name;
+        for (int c = 0; c < 3; ++c) {
+            const double want = o["radiosity"][c], got = doubledObjects[name][c];
+            EXPECT_NEAR(got, want, 0.02 * std::abs(want) + 1e-9) << name << " channel " << c;
+        }
+    }
 }
 
 // --- Errors: one line, "<path>: <item>: <problem>". ---

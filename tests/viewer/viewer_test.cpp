@@ -84,6 +84,10 @@ int countPixels(const Picture& p, int x0, int y0, int x1, int y1, Pred pred) {
     return n;
 }
 
+// The panel's warning text: yellow (ImGui text antialiased over the dark
+// window background).
+bool warningText(const unsigned char* c) { return c[0] > 150 && c[1] > 120 && c[2] + 60 < c[1] && c[0] >= c[1]; }
+
 double meanAbsDifference(const Picture& a, const Picture& b, int x0, int y0, int x1, int y1) {
     double sum = 0.0;
     int n = 0;
@@ -143,6 +147,32 @@ TEST(ViewerTest, WindowShowsTheSolvedSceneAndThePanel) {
     });
     EXPECT_GT(dark, area / 3) << "panel background";
     EXPECT_GT(blue, area / 20) << "panel widgets";
+    // No warning: the Cornell box has none (the next test has one).
+    EXPECT_LT(countPixels(p, 20, 40, 350, 340, warningText), 20) << "a warning in the panel";
+}
+
+// Issue 11: what the CLI prints as `warning:` lines, the panel shows. The
+// Cornell box with its tall block shown twice in place: the copy is dropped
+// at import and named in the panel, in its warning colour.
+TEST(ViewerTest, ThePanelShowsTheWarnings) {
+    ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    TempDir dir;
+    nlohmann::json gltf = readJson(kScene);
+    int tallBlock = -1;
+    for (const nlohmann::json& node : gltf["nodes"])
+        if (node.value("name", "") == "tall-block") tallBlock = node.at("mesh");
+    ASSERT_GE(tallBlock, 0);
+    gltf["nodes"].push_back({{"name", "tall-block-copy"}, {"mesh", tallBlock}});
+    gltf["scenes"][0]["nodes"].push_back(gltf["nodes"].size() - 1);
+    const std::string scene = (dir / "doubled.gltf").string(), png = (dir / "window.png").string();
+    { std::ofstream(scene) << gltf.dump(); }
+    const ProcessResult r = run("timeout 60 " + kXvfb + shellQuote(kViewer) + " " + shellQuote(scene) +
+                                " --screenshot-after 1.5 " + shellQuote(png) + " --quit-after 2.5");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const Picture p = readPicture(png);
+    ASSERT_EQ(p.width, 1200) << r.output;
+    // Two lines of yellow text under the status line.
+    EXPECT_GT(countPixels(p, 20, 40, 350, 340, warningText), 300) << "no warning in the panel";
 }
 
 // Exposure is applied on the GPU (a push constant): one EV down halves the

@@ -12,10 +12,26 @@
 
 namespace rad {
 
+// Polygons of `dropped` that repeat polygons of `kept` in place (see
+// ImportNotes::duplicatePolygons); the two may be the same object.
+struct DuplicatePolygons {
+    std::string kept;
+    std::string dropped;
+    std::size_t count = 0;
+};
+
 struct ImportNotes {
     std::vector<std::string> lines;  // things ignored or dropped, for the log
     std::size_t degenerateTriangles = 0;
     std::size_t mergedQuads = 0;
+    // Polygons dropped because an earlier polygon (in node order) has the
+    // same vertices in the same cyclic order, so faces the same way, after
+    // the node transforms and quad merging. Equal means within 1e-9 of the
+    // scene's bounding-box diagonal, which absorbs rounding. Light would see
+    // both copies: the form factors to them would add up twice. The same
+    // polygons facing opposite ways (a zero-thickness slab) are kept.
+    std::size_t duplicatePolygons = 0;
+    std::vector<DuplicatePolygons> duplicates;  // per pair of objects, in the order first met
 };
 
 // Throws SceneError with one line naming the file and the offending item.

@@ -37,14 +37,39 @@ MeshSnapshot makePreviewSnapshot(const Scene& scene);
 // cell centres on quads, the centroids of the 16 sub-triangles of a 4-level
 // split on triangles.
 struct RadiositySamples {
-    std::vector<double> luminance;  // per sample: luminance of the leaf's B there
-    std::vector<double> weight;     // per sample: the area it stands for
+    std::vector<double> luminance;       // per sample: luminance of the leaf's B there
+    std::vector<double> weight;          // per sample: the area it stands for
+    std::vector<std::uint32_t> object;   // per sample: its polygon's object (Scene::objects); may be empty
+};
+
+// An object is dark when its mean luminance in the reference is below this
+// share of the scene's: its own normalisation would turn noise into large
+// errors, so it is left out of SolutionError::worstObjectRms.
+inline constexpr double kDarkObjectShare = 1e-3;
+
+// One object's samples compared, normalised by the object's own mean, so that
+// a dim room behind a bright corridor shows its error (issue 12).
+struct ObjectError {
+    std::uint32_t object = 0;  // index in Scene::objects
+    double mean = 0.0;  // area-weighted mean luminance of the reference over the object's samples
+    // Area-weighted RMS difference and largest absolute difference, both over
+    // `mean`. An object black in the reference (mean 0) has 0 where the
+    // solution is black too, and infinity where it is not.
+    double rms = 0.0;
+    double max = 0.0;
+    bool dark = false;  // mean < kDarkObjectShare times the scene's mean
 };
 
 struct SolutionError {
     double rms = 0.0;  // area-weighted RMS difference / area-weighted mean of the reference
     double max = 0.0;  // largest absolute difference / that same mean
+    // Per object that has samples, in object order; empty when the samples
+    // carry no objects.
+    std::vector<ObjectError> objects;
+    double worstObjectRms = 0.0;  // the largest ObjectError::rms among objects not dark; 0 if none
 };
+// Throws std::invalid_argument when the two sets are not of the same scene
+// (different sizes, or different objects per sample).
 SolutionError compareSamples(const RadiositySamples& solution, const RadiositySamples& reference);
 
 }  // namespace rad
