@@ -60,6 +60,11 @@ struct HElement {
     // that finer links leave uncovered).
     double coverage = 0.0;
     glm::dvec3 radiosity{0.0};   // B; for clusters the area-weighted mean below
+    // Surfaces: the largest luminance of B among the leaves below (a leaf's
+    // own). A link sends the mean B of its source, which stands for its
+    // brightest part only as long as the link is fine enough: refinement
+    // judges surfaces by this (update/OracleSteps.h).
+    double peak = 0.0;
     // The B that the receivers of this element's links currently hold in
     // their irradiance: the in-place gather adds F times the difference.
     glm::dvec3 gathered{0.0};

@@ -372,6 +372,7 @@ void Hierarchy::subdivide(ElementId id) {
         c.reflectance = parent.reflectance;
         c.emission = parent.emission;
         c.radiosity = parent.radiosity;
+        c.peak = luminance(parent.radiosity);
         c.gathered = parent.gathered;
         c.oracle = parent.oracle;
         c.anchor = parent.anchor;

@@ -38,7 +38,7 @@ bool Refiner::touchesMovable(ElementId e) const {
 
 std::size_t Refiner::segments(ElementId s, ElementId r, Segments& out, RayWeights& weights) const {
     const int order = settings_.samplesPerElement >= 4 ? 2 : 1;
-    const SourcePoints ps = sourcePoints(h_, s, h_[r].center, order), pr = sourcePoints(h_, r, h_[s].center, order);
+    const SourcePoints ps = sourcePoints(h_, s, h_[r].box, order), pr = sourcePoints(h_, r, h_[s].box, order);
     std::size_t n = 0;
     double total = 0.0;
     for (int i = 0; i < ps.n; ++i)
@@ -63,7 +63,9 @@ float Refiner::weightedVisibility(const Link& l, const RayWeights& weights) cons
         total += weights[i];
         if (!(((l.blockedStatic | l.blockedDynamic) >> i) & 1u)) seen += weights[i];
     }
-    return total > 0.0 ? static_cast<float>(seen / total) : 1.0f;
+    // No ray between the ends (a cluster none of whose points faces the
+    // other end): nothing shows that light crosses, so none does.
+    return total > 0.0 ? static_cast<float>(seen / total) : 0.0f;
 }
 
 namespace {
@@ -124,7 +126,7 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
     // surface receiver: the mean over its Gauss points of the form factor to
     // them. A cluster receiver: the kernel at its centre, which each facet
     // takes times its cosine toward the source.
-    const SourcePoints source = sourcePoints(h_, s, rcv.center);
+    const SourcePoints source = sourcePoints(h_, s, rcv.box);
     if (!rcv.isSurface()) {
         const double g = pointKernel(source, rcv.center);
         return {g, g, g};
@@ -340,12 +342,18 @@ bool Refiner::wouldRefine(const Link& link) const {
     const double v = link.visibility();
     const bool clusterEnd = !h_[link.source].isSurface() || !h_[link.receiver].isSurface();
     const double f = (clusterEnd || (v > 0.0 && v < 1.0)) ? link.unoccluded : link.formFactor();
-    // BF, and the same bound on how much the transfer varies across the receiver.
     // A transfer that is estimated (a cluster end's point quadrature, or a
     // visibility between 0 and 1 from 16 rays) is less certain than one
     // computed exactly, and counts for more.
     const double weight = (clusterEnd || (v > 0.0 && v < 1.0)) ? kEstimatedWeight : 1.0;
-    const double bound = weight * h_[link.source].oracle * coupling(link, std::max(f, double(link.spread) * v));
+    // BF, and the same bound on how much the transfer varies across the
+    // receiver. A link's form factor varying across the receiver also says
+    // how the receiver's other, coarser light divides among its children (a
+    // wall half hidden by a door 2 mm in front of it: the hidden half takes
+    // none of the room's light): judged by the receiver's own radiosity too.
+    const double bright = std::max(h_[link.source].oracle, h_[link.receiver].oracle);
+    const double bound = weight * std::max(h_[link.source].oracle * coupling(link, std::max(f, double(link.spread) * v)),
+                                           bright * coupling(link, double(link.spread)));
     // A little slack: symmetric scenes put many links exactly on the threshold,
     // and the same scene at another scale must not fall on the other side.
     return bound > settings_.epsilon * settings_.referencePower * (1.0 + 1e-9);

@@ -120,7 +120,7 @@ private:
     FormFactorEstimate unoccludedFormFactor(ElementId s, ElementId r) const;
     // A transfer of the link (unoccluded F, or kernel G) times the receiving area it reaches (A_r F for
     // a surface receiver, G times the projected area for a cluster).
-    public: double coupling(const Link& link, double transfer) const; private:
+    double coupling(const Link& link, double transfer) const;
     // Visibility rays: between the two ends' points (ClusterTransfer's
     // sourcePoints: Gauss points on a surface, a cluster's points on its
     // surfaces facing the other end), in fixed storage: a link is computed

@@ -34,7 +34,7 @@ double SourcePoints::totalArea() const {
     return a;
 }
 
-SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const glm::dvec3& toward,
+SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const Aabb& toward,
                           int surfaceOrder) {
     SourcePoints out;
     const HElement& s = h[source];
@@ -51,11 +51,16 @@ SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const glm::dvec3
     // The cluster's points on surfaces facing `toward`, evenly picked from
     // its stratified order; each stands for its share of the facing area.
     const ClusterShape& shape = h.shape(source);
+    const glm::dvec3 centre = toward.center(), half = 0.5 * toward.extent();
+    const auto faces = [&](const ClusterShape::Sample& q) {
+        // The box's farthest corner along the normal lies in front of the plane.
+        return glm::dot(q.normal, centre - q.p) + glm::dot(glm::abs(q.normal), half) > 1e-9 * glm::length(half);
+    };
     std::array<int, ClusterShape::kSamples> facing{};
     int count = 0;
     double facingArea = 0.0;
     for (int k = 0; k < shape.sampleCount; ++k)
-        if (glm::dot(shape.samples[k].normal, toward - shape.samples[k].p) > 0.0) {
+        if (faces(shape.samples[k])) {
             facing[count++] = k;
             facingArea += shape.samples[k].weight;
         }

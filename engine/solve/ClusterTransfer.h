@@ -38,8 +38,10 @@ glm::dvec3 sentChange(const Hierarchy& h, const Link& link, const glm::dvec3& su
                       const ClusterShape::Powers& facetChange);
 
 // A source element as a few points for quadrature over its area: a surface's
-// 2 x 2 Gauss points, a cluster's sample points on surfaces facing a given
-// point, each with its normal and the area it stands for.
+// 2 x 2 Gauss points, a cluster's sample points on surfaces that face some
+// of a given box (the other end of a link: facing its centre alone would
+// leave a cluster beside a large element with no point that sees it, and a
+// link without rays), each with its normal and the area it stands for.
 struct SourcePoints {
     static constexpr int kMax = 4;
     std::array<glm::dvec3, kMax> p{}, normal{};
@@ -49,7 +51,7 @@ struct SourcePoints {
     double totalArea() const;
 };
 // surfaceOrder: the Gauss order on a surface (2: 2 x 2 points, 1: its centre).
-SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const glm::dvec3& toward,
+SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const Aabb& toward,
                           int surfaceOrder = 2);
 // The form factor from a point x of normal nx to the source (unoccluded),
 // by quadrature over its points: sum of A_k cos_k cos_x / (pi r_k^2).

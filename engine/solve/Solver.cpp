@@ -115,6 +115,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
             b = e.emission + e.reflectance * guarded(here.irradiance, here.formFactorSum);
             walk.change += e.area * std::abs(luminance(b - e.radiosity));
             walk.total += e.area * std::abs(luminance(b));
+            e.peak = luminance(b);
         } else {
             // The walk down a quadtree is bound by memory: ask for the
             // children's fields before the first is read.
@@ -126,10 +127,12 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
             }
             const double uncovered = meanUncovered(e);
             double area = 0.0;
+            e.peak = 0.0;
             for (ElementId c : e.children) {
                 b += h_[c].area * push(c, shareOf(here, h_[c], uncovered), FacetArrivals{}, below,
                                        depth + 1, walk);
                 area += h_[c].area;
+                e.peak = std::max(e.peak, h_[c].peak);
             }
             if (area > 0.0) b /= area;
         }

@@ -7,7 +7,7 @@ namespace rad {
 
 double oracleOf(const Hierarchy& h, ElementId e) {
     const HElement& el = h[e];
-    return el.shape != kNone ? h.shape(e).peakLuminance(h.shape(e).power) : luminance(el.radiosity);
+    return el.shape != kNone ? h.shape(e).peakLuminance(h.shape(e).power) : el.peak;
 }
 
 void anchorOracles(Hierarchy& h) {

@@ -30,8 +30,10 @@ struct OracleSteps {
     static constexpr double kHysteresis = 0.75;  // in steps: B back at the anchor is level 0
 };
 
-// The luminance refinement judges an element's links by: a surface's B, and
-// for a cluster its brightest facet (a lamp in a dark cluster counts).
+// The luminance refinement judges an element's links by: for a surface the
+// B of its brightest leaf (a link sends the mean, and a bright strip that
+// the receiver cannot see must not pass for light it does), and for a
+// cluster its brightest facet (a lamp in a dark cluster counts).
 double oracleOf(const Hierarchy& hierarchy, ElementId e);
 
 // After a solve: every element's anchor becomes its oracle and its anchor

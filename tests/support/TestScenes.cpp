@@ -91,6 +91,69 @@ Scene roomWithBlock(double scale, glm::dvec3 blockOffset) {
     return s;
 }
 
+namespace {
+
+using Quad = std::array<glm::dvec3, 4>;
+
+// An axis-aligned rectangle in the plane `axis` = c, spanning [a0,a1] x [b0,b1]
+// in the other two axes (in x, y, z order), facing +axis or -axis.
+Quad rectangle(int axis, double c, double a0, double a1, double b0, double b1, bool positive) {
+    const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+    const auto at = [&](double a, double b) {
+        glm::dvec3 p(0.0);
+        p[axis] = c;
+        p[u] = a;
+        p[v] = b;
+        return p;
+    };
+    Quad q = {at(a0, b0), at(a1, b0), at(a1, b1), at(a0, b1)};
+    // Turned so that its winding faces the side asked for.
+    const glm::dvec3 n = glm::cross(q[1] - q[0], q[3] - q[0]);
+    if ((n[axis] > 0.0) != positive) std::swap(q[1], q[3]);
+    return q;
+}
+
+}  // namespace
+
+glm::dvec3 doorHinge() { return glm::dvec3(1.45, 0.0, 1.96); }
+
+Scene doorwayScene(bool doorDynamic) {
+    using V = glm::dvec3;
+    Scene s;
+    s.sourcePath = "doorway";
+    const auto wall = addMaterial(s, V(0.7), V(0.0), "wall");
+    const auto floor = addMaterial(s, V(0.4), V(0.0), "floor");
+    const auto light = addMaterial(s, V(0.0), V(12.0), "light");
+    const auto paint = addMaterial(s, V(0.6), V(0.0), "door");
+    // The corridor: z from 0 to 2, the doorway in its far wall (z = 2).
+    addQuadObject(s, "corridor-floor", floor, {rectangle(1, 0.0, 0, 4, 0, 2, true)});
+    addQuadObject(s, "corridor-ceiling", wall, {rectangle(1, 2.5, 0, 4, 0, 2, false)});
+    addQuadObject(s, "corridor-walls", wall,
+                  {rectangle(0, 0.0, 0, 2.5, 0, 2, true), rectangle(0, 4.0, 0, 2.5, 0, 2, false),
+                   rectangle(2, 0.0, 0, 4, 0, 2.5, true),
+                   rectangle(2, 2.0, 0, 1.5, 0, 2.5, false), rectangle(2, 2.0, 2.5, 4, 0, 2.5, false),
+                   rectangle(2, 2.0, 1.5, 2.5, 2, 2.5, false)});
+    addQuadObject(s, "corridor-light", light, {rectangle(1, 2.499, 1.5, 2.5, 0.8, 1.2, false)});
+    // The doorway's reveal through the wall (z from 2 to 2.1).
+    addQuadObject(s, "reveal", wall,
+                  {rectangle(0, 1.5, 0, 2, 2.0, 2.1, true), rectangle(0, 2.5, 0, 2, 2.0, 2.1, false),
+                   rectangle(1, 2.0, 1.5, 2.5, 2.0, 2.1, false), rectangle(1, 0.0, 1.5, 2.5, 2.0, 2.1, true)});
+    // The dark room: z from 2.1 to 5.
+    addQuadObject(s, "dark-floor", floor, {rectangle(1, 0.0, 0, 4, 2.1, 5, true)});
+    addQuadObject(s, "dark-ceiling", wall, {rectangle(1, 2.5, 0, 4, 2.1, 5, false)});
+    addQuadObject(s, "dark-walls", wall,
+                  {rectangle(0, 0.0, 0, 2.5, 2.1, 5, true), rectangle(0, 4.0, 0, 2.5, 2.1, 5, false),
+                   rectangle(2, 5.0, 0, 4, 0, 2.5, false),
+                   rectangle(2, 2.1, 0, 1.5, 0, 2.5, true), rectangle(2, 2.1, 2.5, 4, 0, 2.5, true),
+                   rectangle(2, 2.1, 1.5, 2.5, 2, 2.5, true)});
+    addQuadObject(s, "dark-block", wall, boxFaces(V(2.8, 0.0, 3.5), V(3.4, 0.8, 4.1), false));
+    // The door: x 1.45..2.55, up to 2.05, z 1.96..1.998, faces out, no bottom.
+    auto door = boxFaces(V(1.45, 0.0, 1.96), V(2.55, 2.05, 1.998), false);
+    door.erase(door.begin());  // the -y face rests on the floor
+    addQuadObject(s, "door", paint, door, doorDynamic);
+    return s;
+}
+
 std::string sourcePath(const std::string& relative) { return std::string(RADIOSITY_SOURCE_DIR) + "/" + relative; }
 
 }  // namespace rad::test
