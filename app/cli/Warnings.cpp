@@ -1,6 +1,8 @@
 #include "cli/Warnings.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <map>
 #include <string>
 
 namespace rad::cli {
@@ -20,7 +22,24 @@ std::vector<Warning> importWarnings(const ImportNotes& notes) {
 }
 
 void printWarnings(const std::vector<Warning>& warnings) {
-    for (const Warning& w : warnings) std::fprintf(stderr, "warning: %s\n", w.message.c_str());
+    // A kind that fires at many objects (the energy guard in a furnished
+    // scene) prints its largest case and a count; the report lists them all.
+    constexpr std::size_t kPerKind = 3;
+    std::map<std::string, std::vector<const Warning*>> byKind;
+    for (const Warning& w : warnings) byKind[w.kind].push_back(&w);
+    for (const Warning& w : warnings) {
+        const std::vector<const Warning*>& same = byKind[w.kind];
+        if (same.size() <= kPerKind) {
+            std::fprintf(stderr, "warning: %s\n", w.message.c_str());
+            continue;
+        }
+        const Warning* largest = *std::max_element(same.begin(), same.end(), [](const Warning* a, const Warning* b) {
+            return a->amount < b->amount;
+        });
+        if (&w != largest) continue;
+        std::fprintf(stderr, "warning: %s (and %zu more '%s' warnings, listed in the report's warnings)\n",
+                     w.message.c_str(), same.size() - 1, w.kind.c_str());
+    }
 }
 
 Report warningsReport(const std::vector<Warning>& warnings) {

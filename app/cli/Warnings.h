@@ -1,7 +1,7 @@
 #pragma once
 // What the CLI tells the user besides its results: the warnings of the
 // import (duplicate polygons dropped) and of the solve (energy guard, memory
-// limit), printed one line each on stderr and listed in the solve report.
+// limit), printed on stderr and listed in the solve report.
 
 #include <vector>
 
@@ -16,7 +16,8 @@ namespace rad::cli {
 // from; amount: how many polygons were dropped).
 std::vector<Warning> importWarnings(const ImportNotes& notes);
 
-// "warning: <message>" on stderr, one line per warning.
+// "warning: <message>" on stderr, one line per warning; a kind with more
+// than three prints only its largest (by amount) and how many more there are.
 void printWarnings(const std::vector<Warning>& warnings);
 
 // The report's `warnings`: an array of {kind, message, objects, amount}.
