@@ -397,6 +397,15 @@ std::size_t LineSpaceUpdate::controlledUpdate(std::size_t index, std::size_t bud
     return used;
 }
 
+// Links made during the frame (refinement) have ids past the stamps sized
+// when it began.
+bool LineSpaceUpdate::stampedThisFrame(LinkId id) const { return id < linkStamp_.size() && linkStamp_[id] == frame_; }
+
+void LineSpaceUpdate::stamp(LinkId id) {
+    if (id >= linkStamp_.size()) linkStamp_.resize(links_.slots(), 0);
+    linkStamp_[id] = frame_;
+}
+
 bool LineSpaceUpdate::hasLinkFrom(ElementId e, const IndexRange& sources) const {
     const auto from = [&](LinkId id) { return sources.contains(h_[links_[id].source].range.first); };
     return std::any_of(h_[e].links.begin(), h_[e].links.end(), from) ||
@@ -407,9 +416,9 @@ std::size_t LineSpaceUpdate::checkAddLinks(ElementId he, const IndexRange& ind) 
     std::size_t added = 0;
     for (LinkId id : h_[he].links) {
         const ElementId s = links_[id].source;
-        if (linkStamp_[id] == frame_ || !ind.contains(h_[s].range)) continue;
+        if (stampedThisFrame(id) || !ind.contains(h_[s].range)) continue;
         if (!affectedByMotion(s, he)) continue;
-        linkStamp_[id] = frame_;
+        stamp(id);
         candidates_.push_back(id);
         ++added;
     }
@@ -429,7 +438,7 @@ void LineSpaceUpdate::reinstate(LinkId id) {
     }
     refiner_.activate(id);
     modified_.push_back(id);
-    linkStamp_[id] = frame_;  // already recomputed: not a candidate again
+    stamp(id);  // already recomputed: not a candidate again
     ++reinstated_;
 }
 

@@ -139,6 +139,8 @@ private:
     bool layersChanged_ = false;
     std::uint32_t frame_ = 0;
     std::vector<std::uint32_t> linkStamp_;  // frame in which a link became a candidate
+    bool stampedThisFrame(LinkId id) const;
+    void stamp(LinkId id);
     std::vector<LinkId> candidates_;
     std::size_t shaftTests_ = 0;
     std::size_t reinstated_ = 0;
