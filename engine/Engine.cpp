@@ -29,6 +29,7 @@ namespace {
 // The energy guard is reported where it divided by more than this: below it,
 // the sums exceed one only by the point quadrature's error.
 constexpr double kGuardWarningThreshold = 0.05;
+constexpr double kRoundTolerance = 3e-3;
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -151,7 +152,11 @@ const SolveStats& Engine::solve(const Progress& progress) {
         st.refineSeconds += secondsSince(t);
         st.refineRounds = round;
         t = std::chrono::steady_clock::now();
-        r = s.solver.solve(s.settings.solve);
+        // A round's radiosity only guides the next refinement: a looser
+        // tolerance does (the last solve below meets the asked one).
+        SolveSettings roundSettings = s.settings.solve;
+        roundSettings.tolerance = std::max(roundSettings.tolerance, kRoundTolerance);
+        r = s.solver.solve(roundSettings);
         st.solveSeconds += secondsSince(t);
         st.iterations += r.iterations;
         if (progress) {
@@ -167,8 +172,9 @@ const SolveStats& Engine::solve(const Progress& progress) {
         if (round == s.settings.maxRefineRounds) st.message = "stopped refining after the round limit";
     }
     // Refinement made under an earlier round's radiosity that the final one
-    // no longer asks for goes, and the system is solved once more.
-    if (r.status == SolveResult::Status::Converged && s.updater.reinstateUnneeded() > 0) {
+    // no longer asks for goes, and the system is solved to the tolerance.
+    if (r.status == SolveResult::Status::Converged) {
+        s.updater.reinstateUnneeded();
         const auto t = std::chrono::steady_clock::now();
         r = s.solver.solve(s.settings.solve);
         st.solveSeconds += secondsSince(t);

@@ -1,5 +1,7 @@
 #include "hierarchy/Hierarchy.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <numeric>
 
@@ -454,14 +456,20 @@ void Hierarchy::refreshAncestors(ElementId id) {
 }
 
 void Hierarchy::compact() {
-    elements_.shrink_to_fit();
-    shapes_.shrink_to_fit();
-    for (HElement& e : elements_) {
-        e.links.shrink_to_fit();
-        e.plinks.shrink_to_fit();
-        e.outLinks.shrink_to_fit();
-        e.outPlinks.shrink_to_fit();
-    }
+    // Only slack worth a copy is given back: moving every list and element
+    // costs more than a solve's last sweeps.
+    const auto shrink = [](auto& v, std::size_t slack) {
+        if (v.capacity() - v.size() > slack + v.size() / 4) v.shrink_to_fit();
+    };
+    shrink(elements_, 0);
+    shrink(shapes_, 0);
+    tbb::parallel_for(std::size_t(0), elements_.size(), [&](std::size_t i) {
+        HElement& e = elements_[i];
+        shrink(e.links, 4);
+        shrink(e.plinks, 4);
+        shrink(e.outLinks, 4);
+        shrink(e.outPlinks, 4);
+    });
 }
 
 std::size_t Hierarchy::memoryBytes() const {

@@ -73,6 +73,24 @@ glm::dvec3 polygonNormal(const PatchGeometry& polygon) {
 
 namespace {
 
+// atan2(y, x) for y >= 0, the angle between two vectors from |a x b| and
+// a . b: the arctangent on [0, 1] by Abramowitz & Stegun 4.4.49 (error under
+// 2e-8 rad, far below the quadrature's), reflected to [0, pi]. The library
+// atan2 was a sixth of a solve.
+double vectorAngle(double y, double x) {
+    const double ax = std::abs(x);
+    const bool steep = y > ax;
+    const double t = steep ? ax / y : (ax > 0.0 ? y / ax : 0.0);
+    const double t2 = t * t;
+    double a = 0.0028662257;
+    for (double c : {-0.0161657367, 0.0429096138, -0.0752896400, 0.1065626393, -0.1420889944, 0.1999355085,
+                     -0.3333314528, 1.0})
+        a = a * t2 + c;
+    a *= t;
+    if (steep) a = 0.5 * std::numbers::pi - a;
+    return x < 0.0 ? std::numbers::pi - a : a;
+}
+
 // A 3- or 4-gon's unit normal, or zero when it is not one (or degenerate).
 glm::dvec3 emitterNormal(const PatchGeometry& polygon) {
     return polygon.n < 3 || polygon.n > 4 ? glm::dvec3(0.0) : polygonNormal(polygon);
@@ -86,10 +104,13 @@ double pointToPolygon(const glm::dvec3& x, const glm::dvec3& nx, const PatchGeom
 
     // One-sided emitter: x must be strictly in front of the polygon's plane. The tolerance is
     // relative to the polygon's size and distance so that it means the same at every scale.
-    double scale = 0.0;
-    for (int i = 0; i < polygon.n; ++i) scale = std::max(scale, glm::length(polygon.v[i] - x));
+    double scale2 = 0.0;  // squared: no root needed for a tolerance
+    for (int i = 0; i < polygon.n; ++i) {
+        const glm::dvec3 d = polygon.v[i] - x;
+        scale2 = std::max(scale2, glm::dot(d, d));
+    }
     const double height = glm::dot(np, x - polygon.v[0]);
-    if (!(height > 1e-12 * scale)) return 0.0;  // also rejects NaN input
+    if (!(height > 0.0 && height * height > 1e-24 * scale2)) return 0.0;  // also rejects NaN input
 
     // Sutherland-Hodgman clip to the half-space above x's tangent plane (nx . (p - x) >= 0):
     // the Lambert contour integral below assumes the whole polygon is visible from x's front.
@@ -111,21 +132,22 @@ double pointToPolygon(const glm::dvec3& x, const glm::dvec3& nx, const PatchGeom
     //   F(dA_x -> A) = 1/(2 pi) * sum_i beta_i * (nx . gamma_i),
     // beta_i the angle subtended at x by edge i, gamma_i the unit normal of the triangle
     // (x, v_i, v_i+1). With counter-clockwise-front winding seen from x, gamma_i is taken as
-    // unit(r_{i+1} x r_i). beta_i = atan2(|c|, r_i . r_{i+1}) stays accurate for tiny and
+    // unit(r_{i+1} x r_i). beta_i = atan2(|c|, r_i . r_{i+1}) (vectorAngle) stays accurate for tiny and
     // near-straight angles, unlike acos of a normalised dot product.
-    std::array<double, 8> length{};
-    for (int i = 0; i < count; ++i) length[i] = glm::length(r[i]);
+    std::array<double, 8> length2{};
+    for (int i = 0; i < count; ++i) length2[i] = glm::dot(r[i], r[i]);
     double sum = 0.0;
     for (int i = 0; i < count; ++i) {
         const int j = (i + 1) % count;
         const glm::dvec3& ri = r[i];
         const glm::dvec3& rj = r[j];
         const glm::dvec3 c = glm::cross(rj, ri);
-        const double cl = glm::length(c);
+        const double cl2 = glm::dot(c, c);
         // Coincident vertices or an edge through x (only possible within the plane tolerance):
         // the edge subtends no solid angle we can orient; skip it instead of dividing by zero.
-        if (!(cl > 1e-15 * length[i] * length[j])) continue;
-        const double beta = std::atan2(cl, glm::dot(ri, rj));
+        if (!(cl2 > 1e-30 * length2[i] * length2[j])) continue;
+        const double cl = std::sqrt(cl2);
+        const double beta = vectorAngle(cl, glm::dot(ri, rj));
         sum += beta * glm::dot(nx, c) / cl;
     }
     const double f = sum / (2.0 * std::numbers::pi);

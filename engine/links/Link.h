@@ -3,8 +3,10 @@
 // receiver H-element, and p-links: refined links kept on their receiver as the
 // parents of the line-space hierarchy (paper sec. 3.1).
 
+#include <array>
 #include <bit>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "hierarchy/HElement.h"
@@ -49,39 +51,46 @@ struct Link {
     double formFactor() const { return unoccluded * visibility(); }
 };
 
-// All links and p-links, addressed by LinkId; freed slots are reused.
+// All links and p-links, addressed by LinkId; freed slots are reused. They
+// live in fixed-size chunks: a store of a million links grows without ever
+// copying itself, and has at most one chunk of slack.
 class LinkStore {
 public:
     LinkId add(const Link& link) {
+        LinkId id;
         if (!free_.empty()) {
-            const LinkId id = free_.back();
+            id = free_.back();
             free_.pop_back();
-            links_[id] = link;
-            links_[id].live = true;
-            return id;
+        } else {
+            id = static_cast<LinkId>(size_++);
+            if ((id & kMask) == 0) chunks_.push_back(std::make_unique<Chunk>());
         }
-        links_.push_back(link);
-        links_.back().live = true;
-        return static_cast<LinkId>(links_.size() - 1);
+        Link& l = (*this)[id];
+        l = link;
+        l.live = true;
+        return id;
     }
     void remove(LinkId id) {
-        links_[id] = Link{};
+        (*this)[id] = Link{};
         free_.push_back(id);
     }
-    Link& operator[](LinkId id) { return links_[id]; }
-    const Link& operator[](LinkId id) const { return links_[id]; }
-    std::size_t slots() const { return links_.size(); }
-    std::size_t liveCount() const { return links_.size() - free_.size(); }
-    // Drops the growth slack of the storage (after a solve: links come and go
-    // by a few percent per move from then on).
-    void compact() {
-        links_.shrink_to_fit();
-        free_.shrink_to_fit();
+    Link& operator[](LinkId id) { return (*chunks_[id >> kShift])[id & kMask]; }
+    const Link& operator[](LinkId id) const { return (*chunks_[id >> kShift])[id & kMask]; }
+    std::size_t slots() const { return size_; }
+    std::size_t liveCount() const { return size_ - free_.size(); }
+    // Drops the growth slack of the free list (after a solve: links come and
+    // go by a few percent per move from then on).
+    void compact() { free_.shrink_to_fit(); }
+    std::size_t memoryBytes() const {
+        return chunks_.size() * sizeof(Chunk) + chunks_.capacity() * sizeof(chunks_[0]) + free_.capacity() * sizeof(LinkId);
     }
-    std::size_t memoryBytes() const { return links_.capacity() * sizeof(Link) + free_.capacity() * sizeof(LinkId); }
 
 private:
-    std::vector<Link> links_;
+    static constexpr unsigned kShift = 13;  // 8192 links (384 KiB) a chunk
+    static constexpr LinkId kMask = (LinkId(1) << kShift) - 1;
+    using Chunk = std::array<Link, std::size_t(1) << kShift>;
+    std::vector<std::unique_ptr<Chunk>> chunks_;
+    std::size_t size_ = 0;
     std::vector<LinkId> free_;
 };
 

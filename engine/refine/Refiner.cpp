@@ -114,7 +114,7 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
         const double reach = radius(src) + radius(rcv);
         const glm::dvec3 d = rcv.center - src.center;
         const double d2 = glm::dot(d, d);
-        const int order = d2 < 4.0 * reach * reach ? 5 : d2 < 16.0 * reach * reach ? 3 : 2;
+        const int order = d2 < reach * reach ? 5 : d2 < 4.0 * reach * reach ? 4 : d2 < 16.0 * reach * reach ? 3 : 2;
         // Integrate over the smaller patch (the inner integral over the other
         // is exact) and use reciprocity, A_r F_rs = A_s F_sr: sampling the
         // larger patch would miss the peak of a small neighbour's kernel.
@@ -438,9 +438,12 @@ std::size_t Refiner::refineAll() {
 std::size_t Refiner::refineAll(std::vector<LinkId> wave) {
     std::size_t refined = 0;
     while (!wave.empty()) {
+        // Judged on all cores, kept in the wave's order.
+        std::vector<std::uint8_t> refines(wave.size());
+        tbb::parallel_for(std::size_t(0), wave.size(), [&](std::size_t i) { refines[i] = wouldRefine(links_[wave[i]]); });
         std::vector<LinkId> batch;
-        for (LinkId id : wave)
-            if (wouldRefine(links_[id])) batch.push_back(id);
+        for (std::size_t i = 0; i < wave.size(); ++i)
+            if (refines[i]) batch.push_back(wave[i]);
         if (batch.empty()) break;
         // Each refinement makes a few links and, for a surface, four elements.
         const std::size_t growth = batch.size() * (4 * (sizeof(Link) + 3 * sizeof(LinkId)) + 4 * sizeof(HElement));
