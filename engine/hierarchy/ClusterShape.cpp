@@ -14,6 +14,14 @@ double ClusterShape::projectedArea(const glm::dvec3& dir) const {
     return a;
 }
 
+ClusterShape::Arrivals& ClusterShape::Arrivals::operator+=(const Arrivals& o) {
+    for (int k = 0; k < kMaxFacets; ++k) {
+        irradiance[k] += o.irradiance[k];
+        formFactorSum[k] += o.formFactorSum[k];
+    }
+    return *this;
+}
+
 glm::dvec3 ClusterShape::radiosityToward(const glm::dvec3& dir, const Powers& powers) const {
     glm::dvec3 sent(0.0);
     double area = 0.0;

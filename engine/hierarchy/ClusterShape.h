@@ -28,6 +28,14 @@ namespace rad {
 
 struct ClusterShape {
     static constexpr int kMaxFacets = 12;
+    // What arrives at each facet: the irradiance on a surface with the
+    // facet's normal, and the form factors it came through (for the energy
+    // guard).
+    struct Arrivals {
+        std::array<glm::dvec3, kMaxFacets> irradiance{};
+        std::array<double, kMaxFacets> formFactorSum{};
+        Arrivals& operator+=(const Arrivals& o);
+    };
     static constexpr int kSamples = 16;
 
     struct Facet {
@@ -52,6 +60,12 @@ struct ClusterShape {
 
     Powers power{};     // per facet: sum of B A over its members
     Powers gathered{};  // the power the receivers of its links hold
+    // What its own active links bring, as a surface keeps its irradiance:
+    // summed from the links again when not valid (its links or its facets
+    // changed), added to by further bounces (sec. 5.3.2) so that a bounce
+    // costs its transfers, not a walk over every link of the cluster.
+    Arrivals own{};
+    bool ownValid = false;
 
     // sum_k A_k max(0, n_k . dir), dir a unit vector.
     double projectedArea(const glm::dvec3& dir) const;

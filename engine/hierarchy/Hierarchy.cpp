@@ -234,6 +234,7 @@ void Hierarchy::finishCluster(ElementId id) {
     // What receivers hold stays valid while the facets stand for the same
     // surfaces (a rigid move); otherwise it starts from the current powers.
     if (shape.facetCount != facetsBefore || shape.childFacet != mapBefore) shape.gathered = shape.power;
+    shape.ownValid = false;  // its facets and centre moved: summed again from its links
 }
 
 namespace {

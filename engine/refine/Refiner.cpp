@@ -283,7 +283,10 @@ std::vector<ElementId> Refiner::takeDirty() {
     tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
         HElement& e = h_[out[i]];
         if (!e.stale) return;
-        if (!e.isSurface()) return;  // a cluster's arrivals are resolved when it is pushed
+        if (!e.isSurface()) {
+            h_.shape(out[i]).ownValid = false;  // summed from its links when pushed
+            return;
+        }
         glm::dvec3 irradiance(0.0);
         double sum = 0.0;
         for (LinkId id : e.links) {

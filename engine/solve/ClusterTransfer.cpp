@@ -117,6 +117,16 @@ void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
     }
 }
 
+void addTransfer(Hierarchy& h, ElementId cluster, ElementId source, const glm::dvec3& irradiance) {
+    ClusterShape& shape = h.shape(cluster);
+    if (!shape.ownValid) return;
+    const glm::dvec3 u = centreDirection(h, cluster, source);
+    for (int k = 0; k < shape.facetCount; ++k) {
+        const double c = glm::dot(shape.facets[k].normal, u);
+        if (c > 0.0) shape.own.irradiance[k] += c * irradiance;
+    }
+}
+
 FacetArrivals ChildArrivals::cluster(ElementId child) {
     FacetArrivals out;
     const ClusterShape& childShape = h_.shape(child);

@@ -62,16 +62,17 @@ double pointToSource(const SourcePoints& source, const glm::dvec3& x, const glm:
 double pointKernel(const SourcePoints& source, const glm::dvec3& x);
 
 // What arrives at a cluster's facets from its links and those of the
-// clusters above it: the irradiance on a surface with the facet's normal,
-// and the form factors it came through (for the energy guard).
-struct FacetArrivals {
-    std::array<glm::dvec3, ClusterShape::kMaxFacets> irradiance{};
-    std::array<double, ClusterShape::kMaxFacets> formFactorSum{};
-};
+// clusters above it.
+using FacetArrivals = ClusterShape::Arrivals;
 
 // Adds what the cluster's own active links bring (from their gathered state).
 void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
                  FacetArrivals& arrivals);
+
+// Adds one further-bounce transfer from `source` (the link's form factor
+// times the change it sends) to the cluster's own arrivals, if they are
+// valid (if not, the next push sums them from the links).
+void addTransfer(Hierarchy& h, ElementId cluster, ElementId source, const glm::dvec3& irradiance);
 
 // Walks a cluster's children in order with what each inherits from the
 // cluster's facets: a child cluster its facets' values, a surface its own.

@@ -11,7 +11,10 @@ void Solver::gatherAll() {
     for (ElementId id = 0; id < h_.size(); ++id) {
         HElement& e = h_[id];
         e.gathered = e.radiosity;
-        if (e.shape != kNone) h_.shape(id).gathered = h_.shape(id).power;
+        if (e.shape != kNone) {
+            h_.shape(id).gathered = h_.shape(id).power;
+            h_.shape(id).ownValid = false;  // summed from the links when pushed
+        }
     }
     tbb::parallel_for(ElementId(0), static_cast<ElementId>(h_.size()), [&](ElementId id) {
         HElement& e = h_[id];
@@ -65,8 +68,14 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
     const bool below = forced || e.dirty;
     glm::dvec3 b(0.0);
     if (!e.isSurface()) {
+        ClusterShape& shape = h_.shape(id);
+        if (!shape.ownValid) {
+            shape.own = FacetArrivals{};
+            addArrivals(h_, links_, id, shape.own);
+            shape.ownValid = true;
+        }
         FacetArrivals arrivals = facets;
-        addArrivals(h_, links_, id, arrivals);
+        arrivals += shape.own;
         const std::vector<ElementId>& children = e.children;
         // What each child inherits from this cluster's facets, in order.
         std::vector<Down> surfaceDown(children.size());

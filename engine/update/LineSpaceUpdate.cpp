@@ -536,8 +536,13 @@ double LineSpaceUpdate::heapKey(const Link& l) const { return refiner_.potential
 void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats) {
     const double threshold = settings.bounceThreshold * referenceRadiosity_;
     std::vector<Transfer> transfers;
+    // What a receiver got that could not yet move its radiosity by the
+    // threshold waits here instead of pushing its subtree at every bounce
+    // (a cluster's push walks all of its members); one push at the end
+    // takes it all in.
+    std::vector<ElementId> waiting;
     for (int b = 0; b < settings.maxBounces; ++b) {
-        if (!collectTransfers(visited, threshold, transfers)) return;
+        if (!collectTransfers(visited, threshold, transfers)) break;
         // In the serial order, so that every irradiance gets the same sum.
         // Bound by memory: the receivers a few transfers ahead are asked for early.
         constexpr std::size_t kAhead = 8;
@@ -547,15 +552,43 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
                 __builtin_prefetch(&ahead.irradiance);
                 __builtin_prefetch(&ahead.dirty);
             }
-            // A cluster receiver resolves its arrivals when pushed: dirty is enough.
-            if (h_[transfers[k].receiver].isSurface()) h_[transfers[k].receiver].irradiance += transfers[k].irradiance;
-            refiner_.markDirty(transfers[k].receiver);
+            const Transfer& t = transfers[k];
+            HElement& r = h_[t.receiver];
+            if (r.isSurface())
+                r.irradiance += t.irradiance;
+            else
+                addTransfer(h_, t.receiver, t.source, t.irradiance);
+            if (r.dirty) continue;
+            // The most the receiver's radiosity can move (a cluster's
+            // members reflect at most all of it).
+            const glm::dvec3 moved = r.isSurface() ? r.reflectance * t.irradiance : t.irradiance;
+            if (waitingChange_.size() < h_.size()) waitingChange_.resize(h_.size(), -1.0);
+            double& sum = waitingChange_[t.receiver];
+            if (sum < 0.0) {
+                waiting.push_back(t.receiver);
+                sum = 0.0;
+            }
+            sum += std::abs(luminance(moved));
+            if (sum > threshold) refiner_.markDirty(t.receiver);
         }
         ++stats.bounces;
+        std::erase_if(waiting, [&](ElementId e) {
+            if (!h_[e].dirty) return false;
+            waitingChange_[e] = -1.0;  // pushed now
+            return true;
+        });
         visited = solver_.partialPushPull(refiner_.takeDirty());
         stats.changedElements += visited.size();
         touched_.insert(touched_.end(), visited.begin(), visited.end());
     }
+    if (waiting.empty()) return;
+    for (ElementId e : waiting) {
+        waitingChange_[e] = -1.0;
+        refiner_.markDirty(e);
+    }
+    visited = solver_.partialPushPull(refiner_.takeDirty());
+    stats.changedElements += visited.size();
+    touched_.insert(touched_.end(), visited.begin(), visited.end());
 }
 
 bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, double threshold,
@@ -599,7 +632,7 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
         }
         for (std::size_t j = 0; j < el.outLinks.size(); ++j) {
             const Link& l = links_[el.outLinks[j]];
-            transfers[first[k] + j] = Transfer{l.receiver, l.gathered * sentChange(h_, l, delta, facetDelta)};
+            transfers[first[k] + j] = Transfer{l.receiver, l.source, l.gathered * sentChange(h_, l, delta, facetDelta)};
         }
         el.gathered = el.radiosity;
     });

@@ -116,9 +116,13 @@ private:
     // The oracles' floor, as a fraction of the scene's mean emitted radiosity.
     static constexpr double kOracleFloor = 1e-3;
     std::vector<ElementId> touched_;  // elements the frame's push-pulls visited
+    // Per element: how much the bounces could have moved its radiosity since
+    // its last push; negative when it waits for none.
+    std::vector<double> waitingChange_;
     // A source's change of radiosity sent along one of its links.
     struct Transfer {
         ElementId receiver;
+        ElementId source;
         glm::dvec3 irradiance;
     };
     // The transfers of the visited elements whose radiosity moved by more

@@ -48,7 +48,7 @@ struct UpdateSettings {
     std::optional<std::size_t> budget;
     // Further bounces stop when no element's radiosity moved by more than
     // this fraction of the scene's mean emitted radiosity.
-    double bounceThreshold = 1e-4;
+    double bounceThreshold = 1e-3;
     int maxBounces = 100;
 };
 
