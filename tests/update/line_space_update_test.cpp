@@ -123,9 +123,12 @@ TEST(LineSpaceUpdate, AwayAndBackHasNoDrift) {
     RecordProperty("rms", std::to_string(e.rms));
     EXPECT_LT(e.rms, 1e-3);
     EXPECT_TRUE(allFinite(engine.samples()));
-    // Diagnostic only: further moves to the same place (no motion at all).
+    // Moves to the same place (no motion at all) change nothing beyond what
+    // earlier frames left unsent under the bounce threshold (1e-3 of the mean
+    // emitted radiosity per element; measured 7e-5 rms).
+    const RadiositySamples before = engine.samples();
     for (int k = 0; k < 3; ++k) engine.moveDynamicObject(glm::dmat4(1.0));
-    std::printf("  after 3 more moves to the same place: rms %.2e\n", compareSamples(engine.samples(), original).rms);
+    EXPECT_LT(compareSamples(engine.samples(), before).rms, 2e-4) << "a move that moves nothing changed the solution";
 }
 
 TEST(LineSpaceUpdate, MoveInsideClosedCupboardChangesLittle) {
@@ -208,9 +211,10 @@ TEST(LineSpaceUpdate, OutsideTheSceneAndBackIsValid) {
     std::printf("  far away rms vs start %.3f; back at start rms %.2e max %.2e\n", farErr.rms, e.rms, e.max);
     RecordProperty("rms", std::to_string(e.rms));
     EXPECT_LT(e.rms, 1e-3);
-    // Diagnostic only: a second move to the same place (no motion at all).
+    // A second move to the same place (no motion at all) changes nothing
+    // beyond what the bounce threshold left unsent (as above).
     engine.moveDynamicObject(glm::dmat4(1.0));
-    std::printf("  after one more move to the same place: rms %.2e\n", compareSamples(engine.samples(), original).rms);
+    EXPECT_LT(compareSamples(engine.samples(), back).rms, 2e-4) << "a move that moves nothing changed the solution";
 }
 
 TEST(LineSpaceUpdate, RejectsNonRigidTransforms) {
