@@ -1,6 +1,6 @@
 // A chair moving across the room, updated through the line-space hierarchy
 // (issue: interactive update). Per frame: traversal, update + refinement,
-// push-pull; median and worst frame; the ratio of a from-scratch solve to
+// push-pull, snapshot; median and worst frame; the ratio of a from-scratch solve to
 // the median update, measured in the same run; bytes per link with and
 // without stored shafts; the speedup of two threads over one.
 //   build/bench/radiosity-bench --benchmark_filter=ChairMove
@@ -24,7 +24,7 @@ constexpr double kDistance = 1.0;  // metres along +x
 void ChairMove(benchmark::State& state, const char* scene) {
     const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
     const rad::Scene loaded = rad::loadGltf(std::string(RADIOSITY_SOURCE_DIR) + "/scenes/" + scene);
-    std::vector<double> traversal, update, pushPull, move, total;
+    std::vector<double> traversal, update, pushPull, move, snapshot, total;
     double fullSeconds = 0.0, bytesPerLink = 0.0, shaftFraction = 0.0;
     for (auto _ : state) {
         const auto t0 = std::chrono::steady_clock::now();
@@ -42,6 +42,7 @@ void ChairMove(benchmark::State& state, const char* scene) {
             update.push_back(fs.updateSeconds);
             pushPull.push_back(fs.pushPullSeconds);
             move.push_back(fs.moveSeconds);
+            snapshot.push_back(fs.snapshotSeconds);
             total.push_back(fs.totalSeconds);
             shaftFraction = std::max(shaftFraction, double(fs.shaftTests) / double(fs.links));
         }
@@ -56,6 +57,7 @@ void ChairMove(benchmark::State& state, const char* scene) {
     state.counters["median_update_s"] = median(update);
     state.counters["median_push_pull_s"] = median(pushPull);
     state.counters["median_move_s"] = median(move);
+    state.counters["median_snapshot_s"] = median(snapshot);
     state.counters["full_solve_s"] = fullSeconds;
     state.counters["full_over_update"] = fullSeconds / median(total);
     state.counters["bytes_per_link"] = bytesPerLink;

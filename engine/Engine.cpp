@@ -101,6 +101,18 @@ struct Engine::State {
         for (ElementId e = 0; e < hierarchy.size(); ++e) hierarchy[e].oracle = oracleOf(hierarchy, e);
     }
 
+    // The lit mesh a frame ends with: the viewer draws it, so building it is
+    // part of the frame's time. Valid until the solution changes again.
+    void buildMesh(FrameStats& f) {
+        const auto start = std::chrono::steady_clock::now();
+        mesh = makeRadiositySnapshot(scene, hierarchy);
+        meshValid = true;
+        f.snapshotSeconds = secondsSince(start);
+        f.totalSeconds += f.snapshotSeconds;
+    }
+    MeshSnapshot mesh;
+    bool meshValid = false;
+
     std::optional<std::uint32_t> dynamic;
     std::vector<std::uint32_t> dynamicPolygonIds;
     std::vector<Polygon> original;  // the dynamic object's polygons as chosen
@@ -141,6 +153,7 @@ Engine::~Engine() = default;
 const SolveStats& Engine::solve(const Progress& progress) {
     State& s = *state_;
     SolveStats& st = s.stats;
+    s.meshValid = false;
     s.refiner.linkRoot();
     // Radiosity starts at emission, so the first refinement sees the lights.
     s.solver.pushPull();
@@ -234,12 +247,14 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
     // The layers first: the object's new links split their visibility by them.
     s.chooseDynamic(object);
     const ReinsertionStats r = reinsertUnderRoot(s.hierarchy, s.links, s.refiner, cluster);
+    s.meshValid = false;
     if (!s.solved) return {};
     const double reinsertSeconds = secondsSince(start);
     FrameStats f = s.updater.update(before, s.scene.objectBounds(*object), s.hierarchy[cluster].range, settings, true);
     f.reinsertion = r;
     f.updateSeconds += reinsertSeconds;
     f.totalSeconds += reinsertSeconds;
+    s.buildMesh(f);
     return f;
 }
 
@@ -277,6 +292,7 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
     FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds;
+    s.buildMesh(stats);
     s.budget.record(stats.spent, stats.totalSeconds);
     return stats;
 }
@@ -291,6 +307,7 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
         s.hierarchy.compact();
         s.links.compact();
     }
+    s.buildMesh(f);
     return f;
 }
 
@@ -319,7 +336,7 @@ std::size_t Engine::linkCount() const { return state_->links.liveCount(); }
 RadiositySamples Engine::samples() const { return sampleRadiosity(state_->scene, state_->hierarchy); }
 
 MeshSnapshot Engine::snapshot(SnapshotOverlays overlays) const {
-    MeshSnapshot mesh = makeRadiositySnapshot(state_->scene, state_->hierarchy);
+    MeshSnapshot mesh = state_->meshValid ? state_->mesh : makeRadiositySnapshot(state_->scene, state_->hierarchy);
     auto add = [&](const std::vector<std::array<glm::dvec3, 2>>& segments, const glm::vec3& color) {
         for (const auto& seg : segments)
             for (const glm::dvec3& p : seg) {

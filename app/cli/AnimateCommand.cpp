@@ -54,6 +54,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
           {"update", st.updateSeconds},
           {"push_pull", st.pushPullSeconds},
           {"move", st.moveSeconds},
+          {"snapshot", st.snapshotSeconds},
           {"total", st.totalSeconds}}},
         {"budget", st.budget == kUnlimited ? Report(nullptr) : Report(st.budget)},
         {"target_seconds", valueOrNull(r.targetSeconds)},
@@ -147,9 +148,10 @@ int animate(const AnimateSettings& s) {
             }
             if (record && f > 0) {
                 const FrameStats& st = record->stats;
-                std::printf("frame %d: %.3f s (traversal %.3f, update %.3f, push-pull %.3f), %zu candidates, %zu refined\n",
+                std::printf("frame %d: %.3f s (traversal %.3f, update %.3f, push-pull %.3f, snapshot %.3f), "
+                            "%zu candidates, %zu refined\n",
                             f, st.totalSeconds, st.traversalSeconds, st.updateSeconds, st.pushPullSeconds,
-                            st.candidates, st.refined);
+                            st.snapshotSeconds, st.candidates, st.refined);
             }
             if (!s.images) return;
             char name[32];

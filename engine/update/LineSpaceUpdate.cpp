@@ -48,9 +48,11 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
 
     // 1. Line-space traversal: candidates, reinstated p-links, cleanup; under
     //    a budget, the controlled descent of Fig. 8.
+    recomputeSeconds_ = 0.0;
     findModifiedLinks();
     const std::size_t used = controlledUpdate(0, budget);
-    stats.traversalSeconds = since(start);
+    // The link recomputes the traversal waited for are link updates.
+    stats.traversalSeconds = since(start) - recomputeSeconds_;
     stats.shaftTests = shaftTests_;
     stats.reinstated = reinstated_;
     stats.budgetReinstated = budgetReinstated_;
@@ -60,7 +62,7 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
     //    what is left of the budget.
     auto t = std::chrono::steady_clock::now();
     updateCandidates(stats, budget == kUnlimited ? kUnlimited : (budget > used ? budget - used : 0));
-    stats.updateSeconds = since(t);
+    stats.updateSeconds = since(t) + recomputeSeconds_;
 
     // 3. Partial push-pull, then further bounces where radiosity changed.
     t = std::chrono::steady_clock::now();
@@ -276,9 +278,11 @@ void LineSpaceUpdate::findModifiedLinks() {
         firstAffected.push_back(affected.size());
         // The shaft tests are cheap, the new transfers are not. Isolated: a
         // background recompute must not hold up the level's decisions.
+        const auto t = std::chrono::steady_clock::now();
         tbb::this_task_arena::isolate([&] {
             tbb::parallel_for(std::size_t(0), affected.size(), [&](std::size_t i) { recompute(affected[i]); });
         });
+        recomputeSeconds_ += since(t);
         next.clear();
         const std::size_t firstCandidate = candidates_.size();
         for (std::size_t i = 0; i < level.size(); ++i) {
@@ -290,7 +294,9 @@ void LineSpaceUpdate::findModifiedLinks() {
         });
         level.swap(next);
     }
+    const auto t = std::chrono::steady_clock::now();
     background.wait();
+    recomputeSeconds_ += since(t);
     // Pull the work up (sec. 6.1): a visit's children come after it.
     for (std::size_t i = visits_.size(); i-- > 0;) {
         Visit& v = visits_[i];

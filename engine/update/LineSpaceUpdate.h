@@ -147,6 +147,9 @@ private:
     void stamp(LinkId id);
     std::vector<LinkId> candidates_;
     std::size_t shaftTests_ = 0;
+    // The time the traversal spent waiting for link recomputes (counted as
+    // update, not traversal).
+    double recomputeSeconds_ = 0.0;
     std::size_t reinstated_ = 0;
     std::size_t budgetReinstated_ = 0;
     std::vector<LinkId> pending_;

@@ -78,13 +78,15 @@ struct ReinsertionStats {
 };
 
 struct FrameStats {
-    double traversalSeconds = 0.0;
-    double updateSeconds = 0.0;  // link update and refinement
+    double traversalSeconds = 0.0;  // shaft tests and descent (sec. 4.1)
+    double updateSeconds = 0.0;     // every link recompute, and refinement
     double pushPullSeconds = 0.0;  // partial push-pull and further bounces
     // Before those: the object's polygons, H-elements, cluster sample points
     // and ray-casting layer moved, the obstacles found (Engine).
     double moveSeconds = 0.0;
-    double totalSeconds = 0.0;  // all of the frame
+    // After them: the lit mesh the viewer draws (Engine::snapshot hands it out).
+    double snapshotSeconds = 0.0;
+    double totalSeconds = 0.0;  // all of the frame, the snapshot included
     std::size_t shaftTests = 0;
     std::size_t candidates = 0;
     std::size_t linksUpdated = 0;
