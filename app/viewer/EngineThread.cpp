@@ -53,9 +53,9 @@ struct EngineThread::Worker {
     double now() const {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-    UpdateSettings update() const {
+    UpdateSettings update(bool idle = false) const {
         UpdateSettings u;
-        if (engine && targetFps > 0.0) u.budget = engine->budgetFor(1.0 / targetFps);
+        if (engine && targetFps > 0.0) u.budget = engine->budgetFor(1.0 / targetFps, idle);
         return u;
     }
 };
@@ -228,18 +228,20 @@ void EngineThread::run() {
         std::deque<Command> commands;
         {
             std::unique_lock lock(queueMutex_);
-            if (queue_.empty() && !(w.engine && w.frame.pending > 0)) queueCv_.wait(lock, [&] { return !queue_.empty(); });
+            const bool behind = w.engine && w.frame.pending + w.frame.stale > 0;
+            if (queue_.empty() && !behind) queueCv_.wait(lock, [&] { return !queue_.empty(); });
             commands.swap(queue_);
         }
-        if (commands.empty()) {  // idle: refine what earlier budgets left coarse
-            const std::size_t before = w.frame.pending;
+        if (commands.empty()) {  // idle: update what earlier budgets left stale or coarse
+            const std::size_t before = w.frame.pending + w.frame.stale;
             try {
-                w.frame = w.engine->refinePending(w.update());
+                w.frame = w.engine->refinePending(w.update(true));
             } catch (const std::exception& e) {
                 w.selectionNote = e.what();
-                w.frame.pending = 0;
+                w.frame.pending = w.frame.stale = 0;
             }
-            if (w.frame.pending >= before && w.frame.spent == 0) w.frame.pending = 0;  // no progress: stop
+            if (w.frame.pending + w.frame.stale >= before && w.frame.spent == 0)
+                w.frame.pending = w.frame.stale = 0;  // no progress: stop
             publish(true);
             continue;
         }

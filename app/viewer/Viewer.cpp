@@ -300,7 +300,7 @@ int runViewer(const ViewerOptions& options) {
             ps.budget = snap->budget;
             ps.budgetUnlimited = snap->budget == kUnlimited;
             ps.moves = snap->moves;
-            ps.pending = snap->frame.pending;
+            ps.pending = snap->frame.pending + snap->frame.stale;
             ps.linksUpdated = snap->frame.linksUpdated;
             ps.lastUpdateMs = snap->frame.totalSeconds * 1e3;
             for (const UpdateSample& u : snap->updateTimes)

@@ -16,6 +16,8 @@ struct IndexRange {
     bool contains(std::uint64_t index) const { return first <= index && index <= last; }
     bool contains(const IndexRange& r) const { return first <= r.first && r.last <= last; }
     std::uint64_t size() const { return last - first + 1; }
+    // Ranges are nested or disjoint: whether this one holds r or lies in it.
+    bool nestedWith(const IndexRange& r) const { return contains(r) || r.contains(*this); }
 };
 
 // Thrown when the numbering would not fit in 64 bits: the area threshold is so

@@ -12,6 +12,7 @@
 #include <optional>
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <queue>
 #include <span>
 #include <utility>
@@ -48,7 +49,6 @@ public:
     // Refines, within the budget, the links a budget left coarse, with no
     // motion (what an idle viewer does between moves).
     FrameStats refinePending(const UpdateSettings& settings);
-    std::size_t pendingCount() const { return pending_.size(); }
     // After a solve: reinstates the p-links the criterion no longer asks for
     // (their source's radiosity fell after they were refined), so that the
     // solution is a fixed point of the traversal's decisions and a move that
@@ -62,42 +62,51 @@ public:
     const std::vector<std::array<glm::dvec3, 2>>& changedOutlines() const { return changedSegments_; }
 
 private:
-    // The refining p-links of a node with nested source ranges, descended together.
+    // The affected p-links of a visit with nested source ranges, descended together.
     struct Group {
         IndexRange range;
         std::vector<LinkId> plinks;
-        double transfer = 0.0;     // their potential transfer: the order under a budget
-        bool mustDescend = false;  // a p-link with a cluster end: never reinstated for budget
         std::vector<std::size_t> visits;  // the child visits below
         std::size_t work = 0;             // link updates below, pulled up
     };
+    // A node of the first traversal and the source range it looks at.
     struct Visit {
-        std::size_t own = 0;   // link updates at the node itself
-        std::size_t work = 0;  // own plus everything below
-        std::vector<Group> groups;
-    };
-    // A node of the first traversal, the source range it looks at, and its
-    // visit record.
-    struct Step {
         ElementId he;
         IndexRange ind;
-        std::size_t visit;
+        std::vector<LinkId> affected;    // p-links on he from ind whose shafts the object cut
+        std::vector<LinkId> candidates;  // active links on he from ind likewise (stamped)
+        std::vector<Group> groups;
+        std::size_t work = 0;  // own() plus everything below
+        std::size_t own() const { return affected.size() + candidates.size(); }
     };
-    // Fig. 6: the first traversal, from the root (visit record 0); pulls up
-    // the work each p-link's line-space children call for (sec. 6.1).
+    // Fig. 6: the first traversal, from the root (visit record 0). It only
+    // finds (shaft tests, index ranges) and pulls up the work each visit's
+    // links and its groups' line-space children call for (sec. 6.1).
     void findModifiedLinks();
-    // One node of it, its affected p-links already recomputed: reinstates or
-    // groups them, and appends the child visits to `next`.
-    void visitNode(const Step& step, std::span<const LinkId> affected, std::vector<Step>& next);
-    // Fig. 8: the second traversal, within a budget; returns the link updates spent.
-    std::size_t controlledUpdate(std::size_t visit, std::size_t budget);
-    std::size_t checkAddLinks(ElementId he, const IndexRange& ind);
+    // One node of it: its affected p-links, candidates (stamped) and groups,
+    // and the child visits (node, source range) in the groups' order; returns
+    // the shaft tests made. Visits of a level run concurrently.
+    std::size_t visitNode(Visit& visit, std::vector<std::pair<ElementId, IndexRange>>& children);
+    // Fig. 8: the second traversal, spending the budget top-down over the
+    // visits (ControlledUpdate.cpp); returns the link updates made.
+    std::size_t controlledUpdate(std::size_t budget, FrameStats& stats);
+    // One visit of it, given its budget: reinstates, then shares what is
+    // left among its groups (child visits and their shares go to `next`).
+    void spendOn(std::size_t visit, std::size_t budget, std::vector<std::pair<std::size_t, std::size_t>>& next,
+                 FrameStats& stats);
+    // Puts the links of a visit and everything below it in the stale queue.
+    void defer(std::size_t visit);
+    // Recomputes up to `budget` stale links at the current position; returns
+    // how many.
+    std::size_t catchUp(std::size_t budget, FrameStats& stats);
     bool hasLinkFrom(ElementId e, const IndexRange& sources) const;
-    bool affectedByMotion(ElementId s, ElementId r);
+    // Counts its shaft tests in `tests`.
+    bool affectedByMotion(ElementId s, ElementId r, std::size_t& tests) const;
     // Whether the object's old box cut the shaft of s -> r.
     bool cutBefore(ElementId s, ElementId r) const;
-    // Recomputes a link's form factor and visibility for the new position.
-    void recompute(LinkId id);
+    // Recomputes a link's form factor and visibility for the new position
+    // (`full`: both visibility parts and the form factor, whatever moved).
+    void recompute(LinkId id, bool full = false);
     void reinstate(LinkId id);
     void removeLineSpaceChildren(ElementId e, const IndexRange& sources, LinkId keep);
     using RefineHeap = std::priority_queue<std::pair<double, LinkId>>;
@@ -142,22 +151,26 @@ private:
     IndexRange moved_;
     bool layersChanged_ = false;
     std::uint32_t frame_ = 0;
-    std::vector<std::uint32_t> linkStamp_;  // frame in which a link became a candidate
+    // Frame in which a link became a candidate (written by concurrent visits:
+    // each stamps only its own links).
+    std::vector<std::uint32_t> linkStamp_;
     bool stampedThisFrame(LinkId id) const;
     void stamp(LinkId id);
     std::vector<LinkId> candidates_;
     std::size_t shaftTests_ = 0;
-    // The time the traversal spent waiting for link recomputes (counted as
-    // update, not traversal).
-    double recomputeSeconds_ = 0.0;
     std::size_t reinstated_ = 0;
-    std::size_t budgetReinstated_ = 0;
     std::vector<LinkId> pending_;
+    // Links a budget left with the transfers of an earlier position, in the
+    // order deferred; marked so that none is queued twice.
+    std::deque<LinkId> stale_;
+    std::vector<std::uint8_t> staleMark_;
     std::vector<Visit> visits_;
     std::vector<LinkId> doomed_;  // removeLineSpaceChildren's, kept to spare an allocation per node
     std::vector<LinkId> modified_;  // this frame's modified links, for the overlay
     std::vector<std::array<glm::dvec3, 2>> modifiedSegments_, changedSegments_;
-    void recordOverlay(const std::vector<ElementId>& changed);  // want refining; left coarse by the budget
+    // The overlay segments of this frame's modified links and changed
+    // elements; `append`: added to those on show (catching up after a move).
+    void recordOverlay(const std::vector<ElementId>& changed, bool append);
 };
 
 }  // namespace rad

@@ -202,6 +202,33 @@ TEST(CoincidentGeometry, ZeroThicknessSlab) {
     EXPECT_GT(radiosityOf(slab, "slab"), 0.0);
 }
 
+TEST(CoincidentGeometry, TJunctionsSolveAsTheWholeFloor) {
+    // The same lit floor as one quad, and as one quad beside two half-length
+    // ones (a T-vertex where the three meet): the same light, finite and
+    // balanced.
+    const auto build = [](bool split) {
+        Scene s;
+        s.sourcePath = split ? "t-junction" : "whole-floor";
+        const auto light = test::addMaterial(s, V(0.0), V(5.0), "light");
+        const auto grey = test::addMaterial(s, V(0.6), V(0.0), "grey");
+        if (split)
+            test::addQuadObject(s, "floor", grey,
+                                {plateY(0, 1, 0, 2, 0, false), plateY(1, 2, 0, 1, 0, false),
+                                 plateY(1, 2, 1, 2, 0, false)});
+        else
+            test::addQuadObject(s, "floor", grey, {plateY(0, 2, 0, 2, 0, false)});
+        test::addQuadObject(s, "block", grey, test::boxFaces(V(0.8, 0.0, 0.8), V(1.2, 0.4, 1.2), false));
+        test::addQuadObject(s, "light", light, {plateY(0.7, 1.3, 0.7, 1.3, 1.5, true)});
+        return s;
+    };
+    const Solved split = solve(build(true));
+    const Solved whole = solve(build(false));
+    expectSound(split);
+    expectSound(whole);
+    EXPECT_NEAR(radiosityOf(split, "floor"), radiosityOf(whole, "floor"), 0.01 * radiosityOf(whole, "floor"));
+    EXPECT_NEAR(radiosityOf(split, "block"), radiosityOf(whole, "block"), 0.02 * radiosityOf(whole, "block"));
+}
+
 TEST(CoincidentGeometry, ReflectanceAboveOneStopsWithTheCauseNamed) {
     // A scene built to diverge: a closed box that gives back more light than
     // it receives. Without the energy guard the solve must notice the growth;

@@ -69,12 +69,13 @@ TEST(ConsistencyControlledUpdate, ConsistentForEveryBudget) {
         }
 
         const V steps[] = {V(0.3, 0.0, 0.0), V(0.6, 0.1, -0.2), V(0.2, 0.3, -0.6), V(-0.5, 0.0, 0.4)};
-        std::size_t spent = 0, reinstated = 0, pending = 0;
+        std::size_t spent = 0, reinstated = 0, pending = 0, stale = 0;
         for (const V& s : steps) {
             const FrameStats f = engine.moveDynamicObject(translation(s), withBudget(budget));
             spent += f.spent;
             reinstated += f.budgetReinstated;
             pending = f.pending;
+            stale = std::max(stale, f.stale);
             EXPECT_EQ(f.budget, budget);
         }
         const CoverageResult c = checkCoverage(engine, 20240611u, 300);
@@ -86,9 +87,9 @@ TEST(ConsistencyControlledUpdate, ConsistentForEveryBudget) {
         const double idleRatio = engine.energy().absorbed / engine.energy().emitted;
         std::printf("  budget %s: %d facing pairs, %d without a link, %d with several; absorbed/emitted %.4f "
                     "(solve %.4f, after refinePending %.4f); spent %zu, reinstated for budget %zu, pending %zu, "
-                    "links %zu (%zu after refining %zu pending)\n",
+                    "stale %zu, links %zu (%zu after refining %zu pending)\n",
                     budgetName(budget).c_str(), c.pairs, c.missing, c.doubled, ratio, solvedRatio, idleRatio, spent,
-                    reinstated, pending, links, engine.linkCount(), idle.refined);
+                    reinstated, pending, stale, links, engine.linkCount(), idle.refined);
         EXPECT_GE(c.pairs, 300) << "budget " << budgetName(budget);
         EXPECT_EQ(c.missing, 0) << "budget " << budgetName(budget) << ": " << c.firstBad;
         EXPECT_EQ(c.doubled, 0) << "budget " << budgetName(budget) << ": " << c.firstBad;
@@ -96,11 +97,13 @@ TEST(ConsistencyControlledUpdate, ConsistentForEveryBudget) {
         EXPECT_NEAR(solvedRatio, 1.0, 0.02);
         if (budget == kUnlimited) {
             EXPECT_NEAR(ratio, 1.0, 0.02);
-            EXPECT_EQ(reinstated, 0u) << "no budget reinstates nothing for the budget";
+            EXPECT_EQ(reinstated + stale, 0u) << "no budget leaves nothing coarse or stale";
         } else {
-            // The budget did something: p-links made coarse to save updates.
-            EXPECT_GT(reinstated, 0u) << "budget " << budgetName(budget);
+            // The budget did something: p-links made coarse, or links left
+            // stale, to save updates.
+            EXPECT_GT(reinstated + stale, 0u) << "budget " << budgetName(budget);
         }
+        EXPECT_EQ(idle.stale, 0u) << "an unlimited idle frame works off every stale link";
         // Coarser links lose some energy, but never create any.
         EXPECT_GT(ratio, 0.85) << "budget " << budgetName(budget);
         EXPECT_LT(ratio, 1.02) << "budget " << budgetName(budget);
@@ -182,6 +185,10 @@ TEST(StabilityControlledUpdate, SmallBudgetIsCoarserThenCatchesUp) {
     EXPECT_GT(eLimited.rms, eUnlimited.rms);
     EXPECT_LE(eCaughtUp.rms, 0.01);
     EXPECT_EQ(idle.pending, 0u);
+    EXPECT_EQ(idle.stale, 0u);
+    // Idle time converges to what the unlimited frames computed.
+    const SolutionError toUnlimited = compareSamples(limited.samples(), unlimited.samples());
+    EXPECT_LT(toUnlimited.rms, 1e-3) << "caught up, budget 0 is " << toUnlimited.rms << " from the unlimited frames";
     EXPECT_TRUE(allFinite(limited.samples()));
 }
 

@@ -96,6 +96,7 @@ struct FrameStats {
     std::size_t budget = 0;            // link updates allowed (kUnlimited: no limit)
     std::size_t budgetReinstated = 0;  // p-links reinstated for lack of budget
     std::size_t pending = 0;           // links left coarser than the criterion asks
+    std::size_t stale = 0;             // links a budget left with the transfers of an earlier position
     std::size_t spent = 0;             // link updates made, in budget units
     std::size_t links = 0;
     std::size_t elements = 0;

@@ -1,0 +1,157 @@
+// After the link update: further bounces (paper sec. 5.3.2) carry the change
+// of radiosity the partial push-pull (Fig. 7) found through the links leaving
+// each changed element, until nothing moves by more than the threshold; then
+// refinement follows the light (OracleSteps.h): the links of elements whose
+// oracle stepped are judged again.
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "refine/Refiner.h"
+#include "solve/ClusterTransfer.h"
+#include "solve/Solver.h"
+#include "update/LineSpaceUpdate.h"
+#include "update/OracleSteps.h"
+
+namespace rad {
+
+void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats) {
+    const double threshold = settings.bounceThreshold * referenceRadiosity_;
+    std::vector<Transfer> transfers;
+    // What a receiver got that could not yet move its radiosity by the
+    // threshold waits here instead of pushing its subtree at every bounce
+    // (a cluster's push walks all of its members); one push at the end
+    // takes it all in.
+    std::vector<ElementId> waiting;
+    for (int b = 0; b < settings.maxBounces; ++b) {
+        if (!collectTransfers(visited, threshold, transfers)) break;
+        // In the serial order, so that every irradiance gets the same sum.
+        // Bound by memory: the receivers a few transfers ahead are asked for early.
+        constexpr std::size_t kAhead = 8;
+        for (std::size_t k = 0; k < transfers.size(); ++k) {
+            if (k + kAhead < transfers.size()) {
+                const HElement& ahead = h_[transfers[k + kAhead].receiver];
+                __builtin_prefetch(&ahead.irradiance);
+                __builtin_prefetch(&ahead.dirty);
+            }
+            const Transfer& t = transfers[k];
+            HElement& r = h_[t.receiver];
+            if (r.isSurface())
+                r.irradiance += t.irradiance;
+            else
+                addTransfer(h_, t.receiver, t.source, t.irradiance);
+            if (r.dirty) continue;
+            // The most the receiver's radiosity can move (a cluster's
+            // members reflect at most all of it).
+            const glm::dvec3 moved = r.isSurface() ? r.reflectance * t.irradiance : t.irradiance;
+            if (waitingChange_.size() < h_.size()) waitingChange_.resize(h_.size(), -1.0);
+            double& sum = waitingChange_[t.receiver];
+            if (sum < 0.0) {
+                waiting.push_back(t.receiver);
+                sum = 0.0;
+            }
+            sum += std::abs(luminance(moved));
+            if (sum > threshold) refiner_.markDirty(t.receiver);
+        }
+        ++stats.bounces;
+        std::erase_if(waiting, [&](ElementId e) {
+            if (!h_[e].dirty) return false;
+            waitingChange_[e] = -1.0;  // pushed now
+            return true;
+        });
+        visited = solver_.partialPushPull(refiner_.takeDirty());
+        stats.changedElements += visited.size();
+        touched_.insert(touched_.end(), visited.begin(), visited.end());
+    }
+    if (waiting.empty()) return;
+    for (ElementId e : waiting) {
+        waitingChange_[e] = -1.0;
+        refiner_.markDirty(e);
+    }
+    visited = solver_.partialPushPull(refiner_.takeDirty());
+    stats.changedElements += visited.size();
+    touched_.insert(touched_.end(), visited.begin(), visited.end());
+}
+
+bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, double threshold,
+                                       std::vector<Transfer>& transfers) {
+    // The senders and their transfers are found on all cores: reading the
+    // elements and links is most of a bounce.
+    std::vector<char> sends(visited.size());
+    tbb::parallel_for(std::size_t(0), visited.size(), [&](std::size_t i) {
+        const ElementId id = visited[i];
+        const HElement& el = h_[id];
+        if (el.outLinks.empty()) return;
+        if (el.isSurface()) {
+            sends[i] = std::abs(luminance(el.radiosity - el.gathered)) > threshold;
+            return;
+        }
+        // A cluster sends by facet: any facet's radiosity that moved.
+        const ClusterShape& shape = h_.shape(id);
+        for (int k = 0; k < shape.facetCount && !sends[i]; ++k)
+            sends[i] = shape.facets[k].area > 0.0 &&
+                       std::abs(luminance(shape.power[k] - shape.gathered[k])) > threshold * shape.facets[k].area;
+    });
+    std::vector<ElementId> sources;
+    std::vector<std::size_t> first;  // per source: where its transfers start
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < visited.size(); ++i) {
+        if (!sends[i]) continue;
+        sources.push_back(visited[i]);
+        first.push_back(count);
+        count += h_[visited[i]].outLinks.size();
+    }
+    transfers.resize(count);
+    tbb::parallel_for(std::size_t(0), sources.size(), [&](std::size_t k) {
+        HElement& el = h_[sources[k]];
+        // In-place gather of the difference on every link leaving the source.
+        const glm::dvec3 delta = el.radiosity - el.gathered;
+        ClusterShape::Powers facetDelta{};
+        if (el.shape != kNone) {
+            ClusterShape& shape = h_.shape(sources[k]);
+            for (int f = 0; f < shape.facetCount; ++f) facetDelta[f] = shape.power[f] - shape.gathered[f];
+            shape.gathered = shape.power;
+        }
+        for (std::size_t j = 0; j < el.outLinks.size(); ++j) {
+            const Link& l = links_[el.outLinks[j]];
+            transfers[first[k] + j] = Transfer{l.receiver, l.source, l.gathered * sentChange(h_, l, delta, facetDelta)};
+        }
+        el.gathered = el.radiosity;
+    });
+    return !sources.empty();
+}
+
+void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats& stats, std::size_t budget) {
+    std::sort(touched_.begin(), touched_.end());
+    touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
+    const std::vector<ElementId> moved = stepOracles(h_, touched_, kOracleFloor * referenceRadiosity_);
+    touched_.clear();
+    if (moved.empty()) return;
+    const std::size_t spentBefore = stats.spent;
+    RefineHeap heap;
+    for (ElementId s : moved) {
+        for (LinkId id : h_[s].outLinks)
+            if (refiner_.wouldRefine(links_[id])) heap.push({heapKey(links_[id]), id});
+        // Refinement its new oracle no longer asks for goes (its line-space
+        // children with it).
+        for (LinkId id : std::vector<LinkId>(h_[s].outPlinks)) {
+            const Link& l = links_[id];
+            if (l.live && l.passive && l.source == s && !refiner_.wouldRefine(l)) {
+                reinstate(id);
+                ++stats.reinstated;
+                ++stats.spent;
+            }
+        }
+    }
+    const std::size_t used = stats.spent - spentBefore;
+    refineFromHeap(heap, stats, budget == kUnlimited ? kUnlimited : (budget > used ? budget - used : 0));
+    // The light that the new links carry, once around.
+    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
+    stats.changedElements += visited.size();
+    bounce(std::move(visited), settings, stats);
+    touched_.clear();  // what moved now is stepped at the next frame
+}
+
+}  // namespace rad

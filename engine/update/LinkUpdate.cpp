@@ -1,0 +1,81 @@
+// The link update (paper sec. 5.2): each candidate, recomputed for the new
+// position, either adds B_s (F_new - F_old) to its receiver (eq. 1, the
+// in-place gather) or goes to a heap ordered by its potential power
+// transfer, from which links are refined while the budget lasts (eq. 2 for
+// the parent, new transfers for its children).
+
+#include "refine/Refiner.h"
+#include "update/LineSpaceUpdate.h"
+
+namespace rad {
+
+void LineSpaceUpdate::updateCandidates(FrameStats& stats, std::size_t budget) {
+    RefineHeap heap;
+    // Drop candidates a reinstate under the budget removed; the traversal
+    // recomputed them all.
+    std::erase_if(candidates_, [&](LinkId id) { return !links_[id].live || links_[id].passive; });
+    for (LinkId id : candidates_) {
+        ++stats.candidates;
+        if (refiner_.wouldRefine(links_[id])) {
+            double key = heapKey(links_[id]);
+            // Sec. 6.2: the object entering a shaft it did not cut before makes
+            // refinement there more urgent.
+            const Link& l = links_[id];
+            if (!moved_.nestedWith(h_[l.source].range) && !moved_.nestedWith(h_[l.receiver].range) &&
+                !cutBefore(l.source, l.receiver))
+                key *= kEnteringBoost;
+            heap.push({key, id});
+        } else {
+            refiner_.regather(id);  // eq. 1
+            ++stats.linksUpdated;
+        }
+    }
+    refineFromHeap(heap, stats, budget);
+}
+
+void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats, std::size_t budget) {
+    // Highest transfer first, in batches whose new links are computed in
+    // parallel; a refinement costs the links it creates.
+    std::vector<LinkId> batch, created;
+    std::size_t left = budget;
+    while (!heap.empty()) {
+        batch.clear();
+        std::size_t cost = 0;
+        while (!heap.empty()) {
+            const LinkId id = heap.top().second;
+            if (!links_[id].live || links_[id].passive) {
+                heap.pop();
+                continue;
+            }
+            const std::size_t c = refiner_.childCount(links_[id]);
+            if (budget != kUnlimited && cost + c > left) break;
+            heap.pop();
+            batch.push_back(id);
+            cost += c;
+        }
+        if (batch.empty()) break;
+        created.clear();
+        refiner_.refine(batch, created);  // eq. 2 for the parents, new transfers for the children
+        modified_.insert(modified_.end(), created.begin(), created.end());
+        stats.refined += batch.size();
+        stats.linksUpdated += created.size();
+        stats.spent += created.size();
+        if (budget != kUnlimited) left -= std::min(left, created.size());
+        for (LinkId c : created)
+            if (refiner_.wouldRefine(links_[c])) heap.push({heapKey(links_[c]), c});
+    }
+    // Out of budget: the rest stay at their level with their new form factors
+    // (sec. 5.2), and wait for budget to be refined.
+    while (!heap.empty()) {
+        const LinkId id = heap.top().second;
+        heap.pop();
+        if (!links_[id].live || links_[id].passive) continue;
+        refiner_.regather(id);
+        ++stats.linksUpdated;
+        pending_.push_back(id);
+    }
+}
+
+double LineSpaceUpdate::heapKey(const Link& l) const { return refiner_.potentialTransfer(l); }
+
+}  // namespace rad
