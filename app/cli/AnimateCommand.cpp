@@ -66,6 +66,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
         {"budget_reinstated", st.budgetReinstated},
         {"refined", st.refined},
         {"pending", st.pending},
+        {"stale", st.stale},
         {"changed_elements", st.changedElements},
         {"bounces", st.bounces},
         {"links", st.links},
