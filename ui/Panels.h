@@ -26,6 +26,7 @@ struct PanelState {
     bool budgetUnlimited = false;
     std::size_t moves = 0, pending = 0, linksUpdated = 0;
     double lastUpdateMs = 0.0;
+    double estimatedError = 0.0;  // FrameStats::estimatedError of the last frame
     std::vector<float> updateMs;  // the last seconds of updates, oldest first
 
     // Selection.

@@ -2,6 +2,8 @@
 // target frame rates, each frame compared with a from-scratch solve: the
 // speed/accuracy trade of the controlled update (paper sec. 6, 7.2).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -42,7 +44,40 @@ struct Row {
     // Over the frames, of each frame's worst object rms (SolutionError::worstObjectRms).
     double medianWorstObjectRms = 0.0, worstObjectRms = 0.0;
     double medianSpent = 0.0, medianBudget = 0.0;
+    double medianEstimatedError = 0.0;  // FrameStats::estimatedError
 };
+
+// Spearman's rank correlation of two series (ties share their mean rank).
+double rankCorrelation(const std::vector<double>& a, const std::vector<double>& b) {
+    const auto ranks = [](const std::vector<double>& v) {
+        std::vector<std::size_t> order(v.size());
+        for (std::size_t i = 0; i < v.size(); ++i) order[i] = i;
+        std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return v[x] < v[y]; });
+        std::vector<double> r(v.size());
+        for (std::size_t i = 0; i < order.size();) {
+            std::size_t j = i;
+            while (j + 1 < order.size() && v[order[j + 1]] == v[order[i]]) ++j;
+            for (std::size_t k = i; k <= j; ++k) r[order[k]] = 0.5 * double(i + j);
+            i = j + 1;
+        }
+        return r;
+    };
+    const std::vector<double> ra = ranks(a), rb = ranks(b);
+    const double n = double(a.size());
+    if (n < 2.0) return NAN;
+    double ma = 0.0, mb = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ma += ra[i] / n;
+        mb += rb[i] / n;
+    }
+    double sab = 0.0, saa = 0.0, sbb = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        sab += (ra[i] - ma) * (rb[i] - mb);
+        saa += (ra[i] - ma) * (ra[i] - ma);
+        sbb += (rb[i] - mb) * (rb[i] - mb);
+    }
+    return saa > 0.0 && sbb > 0.0 ? sab / std::sqrt(saa * sbb) : NAN;
+}
 
 std::string budgetText(const std::optional<std::size_t>& b) { return b ? std::to_string(*b) : "inf"; }
 
@@ -63,14 +98,18 @@ int sweep(const SweepSettings& s) {
 
     References references;  // the from-scratch solves, shared by every run
     std::vector<Row> rows;
+    std::vector<double> allEstimated, allRms;  // every frame of every run
     auto play = [&](Row row, const BudgetControlSetting& control) {
         std::fprintf(stderr, "sweep: %s %s\n", row.kind.c_str(),
                      row.kind == "budget" ? budgetText(row.budget).c_str() : std::to_string(*row.targetFps).c_str());
         const AnimationRun run =
             runAnimation(scene, settings, request.object, request.motion, request.frames, control, &references);
         if (rows.empty()) printWarnings(run.initial.warnings);  // every run solves the same: say it once
-        std::vector<double> seconds, rms, objectRms, spent, budget;
+        std::vector<double> seconds, rms, objectRms, spent, budget, estimated;
         for (const FrameRecord& f : run.frames) {
+            estimated.push_back(f.stats.estimatedError);
+            allEstimated.push_back(f.stats.estimatedError);
+            allRms.push_back(f.error->rms);
             seconds.push_back(f.stats.totalSeconds);
             rms.push_back(f.error->rms);
             objectRms.push_back(f.error->worstObjectRms);
@@ -86,6 +125,7 @@ int sweep(const SweepSettings& s) {
         row.medianWorstObjectRms = median(objectRms);
         row.medianSpent = median(spent);
         row.medianBudget = median(budget);
+        row.medianEstimatedError = median(estimated);
         std::printf("%-10s %-8s median frame %.4f s, worst %.4f s, median rms %.4f, worst rms %.4f\n", row.kind.c_str(),
                     row.kind == "budget" ? budgetText(row.budget).c_str() : std::to_string(*row.targetFps).c_str(),
                     row.medianSeconds, row.worstSeconds, row.medianRms, row.worstRms);
@@ -98,7 +138,7 @@ int sweep(const SweepSettings& s) {
     Report runs = Report::array();
     std::string csv =
         "kind,budget,target_fps,target_seconds,median_seconds,worst_seconds,median_rms,worst_rms,worst_max,"
-        "median_worst_object_rms,worst_object_rms,median_spent,median_budget\n";
+        "median_worst_object_rms,worst_object_rms,median_spent,median_budget,median_estimated_error\n";
     for (const Row& r : rows) {
         Report run{{"kind", r.kind}, {"budget", valueOrNull(r.budget)}};
         if (r.targetFps) {
@@ -113,15 +153,16 @@ int sweep(const SweepSettings& s) {
                     {"median_worst_object_rms", r.medianWorstObjectRms},
                     {"worst_object_rms", r.worstObjectRms},
                     {"median_spent", r.medianSpent},
-                    {"median_budget", r.medianBudget}});
+                    {"median_budget", r.medianBudget},
+                    {"median_estimated_error", r.medianEstimatedError}});
         runs.push_back(run);
         char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", r.kind.c_str(),
+        std::snprintf(line, sizeof line, "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", r.kind.c_str(),
                       r.kind == "budget" ? budgetText(r.budget).c_str() : "",
                       r.targetFps ? std::to_string(*r.targetFps).c_str() : "",
                       r.targetFps ? std::to_string(1.0 / *r.targetFps).c_str() : "", r.medianSeconds, r.worstSeconds,
                       r.medianRms, r.worstRms, r.worstMax, r.medianWorstObjectRms, r.worstObjectRms, r.medianSpent,
-                      r.medianBudget);
+                      r.medianBudget, r.medianEstimatedError);
         csv += line;
     }
     writeReport((out / "trade.json").string(), {{"scene", scenePath},
@@ -129,6 +170,7 @@ int sweep(const SweepSettings& s) {
                                                 {"frames", request.frames},
                                                 {"epsilon", settings.epsilon},
                                                 {"median_full_solve_seconds", median(references.seconds)},
+                                                {"estimate_rank_correlation", rankCorrelation(allEstimated, allRms)},
                                                 {"runs", runs}});
     writeFileAtomically((out / "trade.csv").string(), csv);
 

@@ -303,6 +303,7 @@ int runViewer(const ViewerOptions& options) {
             ps.pending = snap->frame.pending + snap->frame.stale;
             ps.linksUpdated = snap->frame.linksUpdated;
             ps.lastUpdateMs = snap->frame.totalSeconds * 1e3;
+            ps.estimatedError = snap->frame.estimatedError;
             for (const UpdateSample& u : snap->updateTimes)
                 if (u.time >= snap->updateTimes.back().time - 5.0) ps.updateMs.push_back(static_cast<float>(u.seconds * 1e3));
             const ObjectInfo* selected =

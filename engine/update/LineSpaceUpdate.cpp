@@ -120,6 +120,15 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     stats.elements = h_.liveCount();
     stats.pending = pending_.size();
     stats.stale = stale_.size();
+    // Active links only: a p-link's transfer is carried by its children.
+    double waiting = 0.0;
+    for (LinkId id : pending_)
+        if (links_[id].live && !links_[id].passive) waiting += heapKey(links_[id]);
+    for (LinkId id : stale_)
+        if (links_[id].live && !links_[id].passive) waiting += heapKey(links_[id]);
+    const HElement& root = h_[h_.root()];
+    const double power = root.area * luminance(root.radiosity);
+    stats.estimatedError = power > 0.0 ? waiting / power : 0.0;
     stats.totalSeconds = secondsSince(start);
 }
 

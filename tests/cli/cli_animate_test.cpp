@@ -174,13 +174,21 @@ TEST(CliSweep, WritesTheTradeTablesAndPlot) {
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);  // header and three runs
     EXPECT_NE(csv.find("budget,inf,"), std::string::npos);
     EXPECT_EQ(csv.rfind("kind,budget,target_fps,target_seconds,median_seconds,worst_seconds,median_rms,worst_rms,"
-                        "worst_max,median_worst_object_rms,worst_object_rms,median_spent,median_budget\n",
+                        "worst_max,median_worst_object_rms,worst_object_rms,median_spent,median_budget,"
+                        "median_estimated_error\n",
                         0),
               0u)
         << csv;
     const json trade = test::readJson(out + "/trade.json");
     EXPECT_EQ(jsonAt(trade, "/frames"), 2);
     EXPECT_GT(jsonAt(trade, "/median_full_solve_seconds"), 0.0);
+    // The live estimate: nothing waits without a budget; budget 0 leaves
+    // stale links, and the estimate ranks those frames as worse.
+    const json first = jsonAt(trade, "/runs/0/median_estimated_error"), second = jsonAt(trade, "/runs/1/median_estimated_error");
+    ASSERT_TRUE(first.is_number() && second.is_number());
+    EXPECT_EQ(second.get<double>(), 0.0);
+    EXPECT_GT(first.get<double>(), 0.0);
+    EXPECT_TRUE(jsonAt(trade, "/estimate_rank_correlation").is_number());
     // One run per budget, then one per target frame rate, in the order asked.
     const json runs = jsonAt(trade, "/runs");
     ASSERT_EQ(runs.size(), 3u);

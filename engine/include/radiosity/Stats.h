@@ -97,6 +97,11 @@ struct FrameStats {
     std::size_t budgetReinstated = 0;  // p-links reinstated for lack of budget
     std::size_t pending = 0;           // links left coarser than the criterion asks
     std::size_t stale = 0;             // links a budget left with the transfers of an earlier position
+    // A live estimate of how far the frame is from what an unlimited update
+    // gives, in the units of SolutionError::rms: the power the stale and
+    // pending links could still change (each link's potential transfer,
+    // B_s F A_r with the unoccluded F), over the scene's B A.
+    double estimatedError = 0.0;
     std::size_t spent = 0;             // link updates made, in budget units
     std::size_t links = 0;
     std::size_t elements = 0;
