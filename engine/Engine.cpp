@@ -311,9 +311,7 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
     return f;
 }
 
-std::size_t Engine::budgetFor(double targetSeconds, bool idle) const {
-    return state_->budget.budgetFor(targetSeconds, idle);
-}
+std::size_t Engine::budgetFor(double targetSeconds) const { return state_->budget.budgetFor(targetSeconds); }
 
 std::size_t Engine::linksCarrying(std::uint32_t from, const glm::dvec2& uvFrom, std::uint32_t to,
                                   const glm::dvec2& uvTo) const {

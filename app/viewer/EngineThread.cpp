@@ -53,9 +53,15 @@ struct EngineThread::Worker {
     double now() const {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
+    // A move frame's budget comes from the target frame rate; an idle frame
+    // (catching up) works until the target frame time is up.
     UpdateSettings update(bool idle = false) const {
         UpdateSettings u;
-        if (engine && targetFps > 0.0) u.budget = engine->budgetFor(1.0 / targetFps, idle);
+        if (!engine || !(targetFps > 0.0)) return u;
+        if (idle)
+            u.deadlineSeconds = 1.0 / targetFps;
+        else
+            u.budget = engine->budgetFor(1.0 / targetFps);
         return u;
     }
 };

@@ -35,9 +35,8 @@ std::pair<double, double> BudgetControl::fit() const {
     return {0.0, sx > 0.0 ? sy / sx : initialCost_};
 }
 
-std::size_t BudgetControl::budgetFor(double targetSeconds, bool idle) const {
-    auto [overhead, cost] = fit();
-    if (idle) overhead = 0.0;
+std::size_t BudgetControl::budgetFor(double targetSeconds) const {
+    const auto [overhead, cost] = fit();
     if (!(cost > 0.0) || !(targetSeconds > overhead)) return 0;
     const double budget = (targetSeconds - overhead) / cost;
     return budget >= 1e15 ? std::size_t(1e15) : static_cast<std::size_t>(budget);

@@ -17,9 +17,7 @@ public:
     void record(std::size_t linkUpdates, double seconds);
     // Link updates that fit in the target frame time (0 when even the fixed
     // overhead does not).
-    // `idle`: for a frame without a traversal (catching up): the whole time
-    // goes to link updates, at the fitted cost of one.
-    std::size_t budgetFor(double targetSeconds, bool idle = false) const;
+    std::size_t budgetFor(double targetSeconds) const;
 
 private:
     std::pair<double, double> fit() const;  // (overhead, cost)

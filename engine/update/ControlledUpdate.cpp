@@ -57,6 +57,11 @@ std::size_t LineSpaceUpdate::controlledUpdate(std::size_t budget, FrameStats& st
     std::vector<LinkId> batch;
     std::size_t spent = 0;
     while (!level.empty()) {
+        if (pastDeadline()) {
+            // Out of time: this level and everything below it waits, stale.
+            for (const auto& [visit, share] : level) defer(visit);
+            break;
+        }
         // The own links of every visit reached, in one parallel batch: the
         // visits of a level have disjoint subtrees or disjoint source ranges.
         batch.clear();
@@ -166,27 +171,33 @@ std::size_t LineSpaceUpdate::catchUp(std::size_t budget, FrameStats& stats) {
     // In the order deferred (a p-link before the links below it), as many as
     // the budget allows; each is recomputed at the current position in full
     // (the object, or the choice of it, may have changed since).
+    // In chunks, so that a deadline is looked at.
     std::vector<LinkId> batch;
-    std::size_t taken = 0;
-    while (taken < stale_.size() && (budget == kUnlimited || batch.size() < budget)) {
-        const LinkId id = stale_[taken++];
-        if (id < staleMark_.size()) staleMark_[id] = 0;
-        if (links_[id].live) batch.push_back(id);
-    }
-    stale_.erase(stale_.begin(), stale_.begin() + std::ptrdiff_t(taken));
-    tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) { recompute(batch[i], true); });
-    for (LinkId id : batch) {
-        const Link& l = links_[id];
-        if (!l.live) continue;  // a reinstate earlier in the batch removed it
-        if (l.passive) {
-            if (!refiner_.wouldRefine(l)) reinstate(id);
-        } else {
-            stamp(id);
-            candidates_.push_back(id);
+    std::size_t done = 0;
+    while (!stale_.empty() && (budget == kUnlimited || done < budget) && !pastDeadline()) {
+        batch.clear();
+        const std::size_t chunk = budget == kUnlimited ? kDeadlineChunk : std::min(kDeadlineChunk, budget - done);
+        while (!stale_.empty() && batch.size() < chunk) {
+            const LinkId id = stale_.front();
+            stale_.pop_front();
+            if (id < staleMark_.size()) staleMark_[id] = 0;
+            if (links_[id].live) batch.push_back(id);
         }
+        tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) { recompute(batch[i], true); });
+        for (LinkId id : batch) {
+            const Link& l = links_[id];
+            if (!l.live) continue;  // a reinstate earlier in the batch removed it
+            if (l.passive) {
+                if (!refiner_.wouldRefine(l)) reinstate(id);
+            } else {
+                stamp(id);
+                candidates_.push_back(id);
+            }
+        }
+        done += batch.size();
     }
     stats.stale = stale_.size();
-    return batch.size();
+    return done;
 }
 
 void LineSpaceUpdate::reinstate(LinkId id) {

@@ -15,6 +15,7 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
                                    const UpdateSettings& settings, bool layersChanged) {
     const auto start = std::chrono::steady_clock::now();
     FrameStats stats;
+    setDeadline(start, settings);
     ++frame_;
     oldBox_ = oldBox;
     newBox_ = newBox;
@@ -132,12 +133,20 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     stats.totalSeconds = secondsSince(start);
 }
 
+void LineSpaceUpdate::setDeadline(std::chrono::steady_clock::time_point start, const UpdateSettings& settings) {
+    deadline_.reset();
+    if (settings.deadlineSeconds)
+        deadline_ = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                std::chrono::duration<double>(std::max(0.0, *settings.deadlineSeconds)));
+}
+
 FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
     const auto left = [&] { return budget == kUnlimited ? kUnlimited : budget - std::min(budget, stats.spent); };
+    setDeadline(start, settings);
     ++frame_;
     candidates_.clear();
     modified_.clear();

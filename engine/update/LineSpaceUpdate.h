@@ -114,6 +114,7 @@ private:
     // Sec. 5.2: the link with the highest potential power transfer first.
     void refineFromHeap(RefineHeap& heap, FrameStats& stats, std::size_t budget);
     void prunePending();
+    void setDeadline(std::chrono::steady_clock::time_point start, const UpdateSettings& settings);
     void finish(FrameStats& stats, std::chrono::steady_clock::time_point start) const;
     // Sec. 6.2: heap key factor for a link whose shaft the object just entered.
     static constexpr double kEnteringBoost = 4.0;
@@ -159,6 +160,11 @@ private:
     std::vector<LinkId> candidates_;
     std::size_t shaftTests_ = 0;
     std::size_t reinstated_ = 0;
+    // This frame's deadline (UpdateSettings::deadlineSeconds), if any.
+    std::optional<std::chrono::steady_clock::time_point> deadline_;
+    bool pastDeadline() const { return deadline_ && std::chrono::steady_clock::now() > *deadline_; }
+    // Link updates made between two looks at the clock.
+    static constexpr std::size_t kDeadlineChunk = 1024;
     std::vector<LinkId> pending_;
     // Links a budget left with the transfers of an earlier position, in the
     // order deferred; marked so that none is queued twice.

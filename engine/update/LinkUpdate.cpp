@@ -49,6 +49,7 @@ void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats, std::s
             }
             const std::size_t c = refiner_.childCount(links_[id]);
             if (budget != kUnlimited && cost + c > left) break;
+            if (deadline_ && !batch.empty() && cost + c > kDeadlineChunk) break;  // look at the clock
             heap.pop();
             batch.push_back(id);
             cost += c;
@@ -63,8 +64,9 @@ void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats, std::s
         if (budget != kUnlimited) left -= std::min(left, created.size());
         for (LinkId c : created)
             if (refiner_.wouldRefine(links_[c])) heap.push({heapKey(links_[c]), c});
+        if (pastDeadline()) break;
     }
-    // Out of budget: the rest stay at their level with their new form factors
+    // Out of budget or time: the rest stay at their level with their new form factors
     // (sec. 5.2), and wait for budget to be refined.
     while (!heap.empty()) {
         const LinkId id = heap.top().second;

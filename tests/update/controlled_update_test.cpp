@@ -192,6 +192,35 @@ TEST(StabilityControlledUpdate, SmallBudgetIsCoarserThenCatchesUp) {
     EXPECT_TRUE(allFinite(limited.samples()));
 }
 
+// Frames on a deadline: the mechanism, not the wall clock. A deadline
+// already past when the frame starts stops every link update: everything
+// the traversal found waits, stale, and an idle frame on such a deadline
+// does nothing either; without one, idle time catches up to what an
+// unlimited frame computes.
+TEST(StabilityControlledUpdate, DeadlineStopsTheWorkAndTheRestWaits) {
+    Engine late(roomWithBlock(), coarse());
+    Engine free(roomWithBlock(), coarse());
+    ASSERT_TRUE(late.solve().converged);
+    ASSERT_TRUE(free.solve().converged);
+    UpdateSettings past;
+    past.deadlineSeconds = 0.0;
+    const FrameStats f = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past);
+    free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    EXPECT_EQ(f.spent, 0u);
+    EXPECT_EQ(f.refined, 0u);
+    EXPECT_GT(f.stale, 0u);
+    EXPECT_GT(f.estimatedError, 0.0);
+    const FrameStats still = late.refinePending(past);
+    EXPECT_EQ(still.spent, 0u);
+    EXPECT_EQ(still.stale, f.stale);
+    const FrameStats idle = late.refinePending();
+    EXPECT_EQ(idle.stale, 0u);
+    EXPECT_EQ(idle.estimatedError, 0.0);
+    const CoverageResult c = checkCoverage(late, 5u, 200);
+    EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
+    EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
+}
+
 TEST(StabilityControlledUpdate, BudgetFromTargetFrameRate) {
     Engine engine(roomWithBlock(), coarse());
     ASSERT_TRUE(engine.solve().converged);

@@ -56,9 +56,7 @@ public:
     FrameStats refinePending(const UpdateSettings& settings = {});
     // The link-update budget that fits a target frame time, from the cost of
     // link updates measured on the frames so far (sec. 6.1).
-    // `idle`: for refinePending, which has no traversal: all of the time
-    // goes to link updates.
-    std::size_t budgetFor(double targetSeconds, bool idle = false) const;
+    std::size_t budgetFor(double targetSeconds) const;
 
     // Consistency check (sec. 6.1): the number of active links that carry the
     // light from a point of polygon `from` to a point of polygon `to` (each

@@ -46,6 +46,11 @@ struct UpdateSettings {
     // Link updates allowed per frame (sec. 6.1): recomputed links, reinstated
     // p-links and links created by refinement each count one. None: no limit.
     std::optional<std::size_t> budget;
+    // Frames on a deadline: link updates stop once the frame has run this
+    // long (checked between levels of the second traversal and between
+    // batches of about a thousand link updates), and what is left waits, as
+    // under a budget, for later frames and idle time. None: no limit.
+    std::optional<double> deadlineSeconds;
     // Further bounces stop when no element's radiosity moved by more than
     // this fraction of the scene's mean emitted radiosity.
     double bounceThreshold = 1e-3;
