@@ -105,7 +105,7 @@ struct Engine::State {
     // part of the frame's time. Valid until the solution changes again.
     void buildMesh(FrameStats& f) {
         const auto start = std::chrono::steady_clock::now();
-        mesh = makeRadiositySnapshot(scene, hierarchy);
+        makeRadiositySnapshot(scene, hierarchy, mesh);
         meshValid = true;
         f.snapshotSeconds = secondsSince(start);
         f.totalSeconds += f.snapshotSeconds;

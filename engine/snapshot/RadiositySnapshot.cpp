@@ -111,14 +111,22 @@ void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vec
         return Key{std::llround(p.x), std::llround(p.y), std::llround(p.z),
                    std::llround(n.x), std::llround(n.y), std::llround(n.z)};
     };
-    std::unordered_map<Key, std::pair<glm::dvec3, double>, KeyHash> sums;
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-        auto& [sum, w] = sums[keyOf(i)];
-        sum += weights[i] * glm::dvec3(mesh.colors[i]);
-        w += weights[i];
+    // Each vertex hashed once: its slot among the distinct keys.
+    const std::size_t n = mesh.positions.size();
+    std::unordered_map<Key, std::uint32_t, KeyHash> slotOf;
+    slotOf.reserve(n);
+    std::vector<std::uint32_t> slot(n);
+    std::vector<std::pair<glm::dvec3, double>> sums;
+    sums.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto [it, added] = slotOf.try_emplace(keyOf(i), std::uint32_t(sums.size()));
+        if (added) sums.emplace_back(glm::dvec3(0.0), 0.0);
+        slot[i] = it->second;
+        sums[it->second].first += weights[i] * glm::dvec3(mesh.colors[i]);
+        sums[it->second].second += weights[i];
     }
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-        const auto& [sum, w] = sums[keyOf(i)];
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto& [sum, w] = sums[slot[i]];
         if (w > 0.0) mesh.colors[i] = glm::vec3(sum / w);
     }
 }
@@ -127,13 +135,22 @@ void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vec
 
 MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy) {
     MeshSnapshot mesh;
+    makeRadiositySnapshot(scene, hierarchy, mesh);
+    return mesh;
+}
+
+void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh) {
+    // Cleared, not freed: a frame's mesh reuses the last one's memory.
+    for (std::vector<glm::vec3>* v : {&mesh.positions, &mesh.normals, &mesh.colors, &mesh.linePositions, &mesh.lineColors})
+        v->clear();
+    mesh.indices.clear();
     std::vector<double> weights;  // per vertex: the leaf area around it
+    weights.reserve(mesh.positions.capacity());
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
         const ElementId top = hierarchy.polygonElement(p);
         if (top != kNone) addPolygon(hierarchy, top, mesh, weights);
     }
     smoothAcrossPolygons(scene, mesh, weights);
-    return mesh;
 }
 
 }  // namespace rad

@@ -12,5 +12,7 @@ namespace rad {
 // interpolated along that edge instead, so that shading has no cracks or
 // jumps where neighbouring leaves differ in depth.
 MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy);
+// The same into `mesh`, reusing its memory.
+void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh);
 
 }  // namespace rad
