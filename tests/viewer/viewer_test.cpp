@@ -278,9 +278,11 @@ TEST(ViewerTest, ClickingAnObjectNotMarkedDynamicSelectsAndMovesIt) {
     ASSERT_GE(before.width, 1000);
     ASSERT_EQ(after.width, before.width);
     // Where the block's front stood, the back wall shows now; far up the back
-    // wall, little changes.
+    // wall, little changes. (Under the sanitizers frames get small budgets,
+    // and what idle time catches up to differs by up to about 3 of 255 there:
+    // README, "Known limits".)
     EXPECT_GT(meanAbsDifference(before, after, 530, 330, 600, 460), 10.0);
-    EXPECT_LT(meanAbsDifference(before, after, 700, 150, 800, 250), 2.0);
+    EXPECT_LT(meanAbsDifference(before, after, 700, 150, 800, 250), 4.0);
 }
 
 TEST(ViewerTest, EngineThreadHeadlessStress) {
