@@ -21,6 +21,7 @@
 #include "update/Obstacles.h"
 #include "update/OracleSteps.h"
 #include "update/LineSpaceUpdate.h"
+#include "update/Timing.h"
 #include "update/Reinsertion.h"
 
 namespace rad {
@@ -30,10 +31,6 @@ namespace {
 // the sums exceed one only by the point quadrature's error.
 constexpr double kGuardWarningThreshold = 0.05;
 constexpr double kRoundTolerance = 3e-3;
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 double totalArea(const Scene& scene) {
     double a = 0.0;

@@ -29,7 +29,7 @@ FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const
     prunePending();
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
-    const auto left = [&] { return budget == kUnlimited ? kUnlimited : budget - std::min(budget, stats.spent); };
+    const auto left = [&] { return budgetLeft(budget, stats.spent); };
 
     // 1. The first line-space traversal finds the affected links (shaft
     //    tests and index ranges only) and pulls their work up.
@@ -133,6 +133,10 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     stats.totalSeconds = secondsSince(start);
 }
 
+std::size_t LineSpaceUpdate::budgetLeft(std::size_t budget, std::size_t spent) {
+    return budget == kUnlimited ? kUnlimited : budget - std::min(budget, spent);
+}
+
 void LineSpaceUpdate::setDeadline(std::chrono::steady_clock::time_point start, const UpdateSettings& settings) {
     deadline_.reset();
     if (settings.deadlineSeconds)
@@ -145,7 +149,7 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
-    const auto left = [&] { return budget == kUnlimited ? kUnlimited : budget - std::min(budget, stats.spent); };
+    const auto left = [&] { return budgetLeft(budget, stats.spent); };
     setDeadline(start, settings);
     ++frame_;
     candidates_.clear();

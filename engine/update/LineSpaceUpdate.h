@@ -115,6 +115,8 @@ private:
     void refineFromHeap(RefineHeap& heap, FrameStats& stats, std::size_t budget);
     void prunePending();
     void setDeadline(std::chrono::steady_clock::time_point start, const UpdateSettings& settings);
+    // What a budget (kUnlimited: none) leaves after `spent` link updates.
+    static std::size_t budgetLeft(std::size_t budget, std::size_t spent);
     void finish(FrameStats& stats, std::chrono::steady_clock::time_point start) const;
     // Sec. 6.2: heap key factor for a link whose shaft the object just entered.
     static constexpr double kEnteringBoost = 4.0;
