@@ -24,4 +24,11 @@ void writeReport(const std::string& path, Report report) {
     writeFileAtomically(path, report.dump(2, ' ', false, Report::error_handler_t::replace) + "\n");
 }
 
+Report warningsReport(const std::vector<Warning>& warnings) {
+    Report list = Report::array();
+    for (const Warning& w : warnings)
+        list.push_back({{"kind", w.kind}, {"message", w.message}, {"objects", w.objects}, {"amount", w.amount}});
+    return list;
+}
+
 }  // namespace rad::cli

@@ -5,8 +5,11 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "radiosity/Stats.h"
 
 namespace rad::cli {
 
@@ -18,6 +21,9 @@ template <typename T>
 Report valueOrNull(const std::optional<T>& v) {
     return v ? Report(*v) : Report(nullptr);
 }
+
+// The report's `warnings`: an array of {kind, message, objects, amount}.
+Report warningsReport(const std::vector<Warning>& warnings);
 
 // Writes the report as indented JSON, atomically. Non-finite numbers (NaN,
 // infinities) are written as null; that policy lives in this function alone.

@@ -42,11 +42,4 @@ void printWarnings(const std::vector<Warning>& warnings) {
     }
 }
 
-Report warningsReport(const std::vector<Warning>& warnings) {
-    Report list = Report::array();
-    for (const Warning& w : warnings)
-        list.push_back({{"kind", w.kind}, {"message", w.message}, {"objects", w.objects}, {"amount", w.amount}});
-    return list;
-}
-
 }  // namespace rad::cli

@@ -1,11 +1,11 @@
 #pragma once
-// What the CLI tells the user besides its results: the warnings of the
+// What the programs tell the user besides their results: the warnings of the
 // import (duplicate polygons dropped) and of the solve (energy guard, memory
-// limit), printed on stderr and listed in the solve report.
+// limit). The CLI prints them on stderr and lists them in the solve report
+// (cli/Report.h), the viewer in its panel.
 
 #include <vector>
 
-#include "cli/Report.h"
 #include "radiosity/Gltf.h"
 #include "radiosity/Stats.h"
 
@@ -19,8 +19,5 @@ std::vector<Warning> importWarnings(const ImportNotes& notes);
 // "warning: <message>" on stderr, one line per warning; a kind with more
 // than three prints only its largest (by amount) and how many more there are.
 void printWarnings(const std::vector<Warning>& warnings);
-
-// The report's `warnings`: an array of {kind, message, objects, amount}.
-Report warningsReport(const std::vector<Warning>& warnings);
 
 }  // namespace rad::cli

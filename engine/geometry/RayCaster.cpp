@@ -40,11 +40,6 @@ void throwOnError(RTCDevice device, const char* what) {
         throw std::runtime_error(std::string("Embree: ") + errorName(e) + " while " + what);
 }
 
-struct SceneRelease {
-    void operator()(RTCScene s) const { rtcReleaseScene(s); }
-};
-using ScenePtr = std::unique_ptr<RTCSceneTy, SceneRelease>;
-
 double maxAbs(const glm::dvec3& p) {
     return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
 }
@@ -131,6 +126,13 @@ void filterHits(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 struct RayCaster::Impl {
+    // Outside the anonymous namespace: LayerData is a member of a class with
+    // linkage, and a unity build includes this file into another.
+    struct SceneRelease {
+        void operator()(RTCScene s) const { rtcReleaseScene(s); }
+    };
+    using ScenePtr = std::unique_ptr<RTCSceneTy, SceneRelease>;
+
     struct LayerData {
         ScenePtr scene;                           // null when the layer is empty
         std::vector<std::uint32_t> polygonOfTri;  // Embree primID -> scene polygon id

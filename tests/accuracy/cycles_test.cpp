@@ -33,8 +33,8 @@ struct ReferenceCase {
     double targetBlockRms;
 };
 
-const ReferenceCase kCornellBox{"cornell-box", 128, 128, 0.05};
-const ReferenceCase kFurnishedRoom{"furnished-room", 128, 96, 0.07};
+const ReferenceCase kCornellBoxCase{"cornell-box", 128, 128, 0.05};
+const ReferenceCase kFurnishedRoomCase{"furnished-room", 128, 96, 0.07};
 
 std::string scenePath(const ReferenceCase& c) { return test::sourcePath("scenes/" + c.name + ".gltf"); }
 std::string referencePath(const ReferenceCase& c, const std::string& suffix) {
@@ -129,15 +129,15 @@ void expectWithinTarget(const ReferenceCase& c) {
 }
 
 TEST(CyclesReference, MatchesTheSceneFiles) {
-    expectReferenceMatchesScene(kCornellBox);
-    expectReferenceMatchesScene(kFurnishedRoom);
+    expectReferenceMatchesScene(kCornellBoxCase);
+    expectReferenceMatchesScene(kFurnishedRoomCase);
 }
 
-TEST(CyclesReference, CornellBoxCameraLinesUp) { expectCameraLinesUp(kCornellBox); }
-TEST(CyclesReference, FurnishedRoomCameraLinesUp) { expectCameraLinesUp(kFurnishedRoom); }
+TEST(CyclesReference, CornellBoxCameraLinesUp) { expectCameraLinesUp(kCornellBoxCase); }
+TEST(CyclesReference, FurnishedRoomCameraLinesUp) { expectCameraLinesUp(kFurnishedRoomCase); }
 
-TEST(CyclesAccuracy, CornellBoxWithinFivePercent) { expectWithinTarget(kCornellBox); }
-TEST(CyclesAccuracy, FurnishedRoomWithinSevenPercent) { expectWithinTarget(kFurnishedRoom); }
+TEST(CyclesAccuracy, CornellBoxWithinFivePercent) { expectWithinTarget(kCornellBoxCase); }
+TEST(CyclesAccuracy, FurnishedRoomWithinSevenPercent) { expectWithinTarget(kFurnishedRoomCase); }
 
 }  // namespace
 }  // namespace rad

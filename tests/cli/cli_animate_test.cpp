@@ -18,7 +18,7 @@ using nlohmann::json;
 using test::runCli;
 using test::shellQuote;
 
-const std::string kCornell = test::sourcePath("scenes/cornell-box.gltf");
+using test::kCornell;
 
 TEST(CliAnimate, ReportsEveryFrameAndMatchesAFullSolve) {
     test::TempDir dir;

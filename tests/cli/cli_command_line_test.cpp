@@ -20,7 +20,7 @@ namespace {
 using test::runCli;
 using test::shellQuote;
 
-const std::string kCornell = test::sourcePath("scenes/cornell-box.gltf");
+using test::kCornell;
 
 struct CommandOptions {
     std::string command;

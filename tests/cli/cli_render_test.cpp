@@ -24,15 +24,15 @@
 #include "radiosity/Gltf.h"
 #include "support/Cli.h"
 #include "support/TempDir.h"
+#include "support/TestScenes.h"
 
 namespace rad {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kSourceDir = RADIOSITY_SOURCE_DIR;
-const std::string kCornellBox = kSourceDir + "/scenes/cornell-box.gltf";
-const std::string kReference = kSourceDir + "/tests/data/cornell-box-preview.pfm";
+const std::string kPreviewReference = test::sourcePath("tests/data/cornell-box-preview.pfm");
+using test::kCornell;
 
 using test::readFile;
 using test::RunResult;
@@ -70,7 +70,7 @@ float regionMean(const Image& image, int channel, double x0, double x1, double y
 
 class CliRender : public ::testing::Test {
   protected:
-    void SetUp() override { ASSERT_TRUE(fs::exists(kCornellBox)) << kCornellBox << " is missing"; }
+    void SetUp() override { ASSERT_TRUE(fs::exists(kCornell)) << kCornell << " is missing"; }
     std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
     test::TempDir dir_;
@@ -79,7 +79,7 @@ class CliRender : public ::testing::Test {
 TEST_F(CliRender, CornellBoxPfmMatchesReference) {
     const std::string out = path("cornell.pfm");
     const RunResult run =
-        runCli("render " + quote(kCornellBox) + " --image " + quote(out) + " --size 128x128");
+        runCli("render " + quote(kCornell) + " --image " + quote(out) + " --size 128x128");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find(out), std::string::npos) << "prints the path written: " << run.output;
     const Image image = readPfm(out);
@@ -88,12 +88,12 @@ TEST_F(CliRender, CornellBoxPfmMatchesReference) {
 
     if (const char* update = std::getenv("RADIOSITY_UPDATE_REFERENCES");
         update && std::string(update) == "1") {
-        fs::create_directories(fs::path(kReference).parent_path());
-        fs::copy_file(out, kReference, fs::copy_options::overwrite_existing);
-        std::printf("updated %s\n", kReference.c_str());
+        fs::create_directories(fs::path(kPreviewReference).parent_path());
+        fs::copy_file(out, kPreviewReference, fs::copy_options::overwrite_existing);
+        std::printf("updated %s\n", kPreviewReference.c_str());
     }
-    ASSERT_TRUE(fs::exists(kReference)) << kReference << " is missing; see the top of this file";
-    const Image reference = readPfm(kReference);
+    ASSERT_TRUE(fs::exists(kPreviewReference)) << kPreviewReference << " is missing; see the top of this file";
+    const Image reference = readPfm(kPreviewReference);
     ASSERT_EQ(reference.width, image.width);
     ASSERT_EQ(reference.height, image.height);
 
@@ -121,7 +121,7 @@ TEST_F(CliRender, CornellBoxPfmMatchesReference) {
 TEST_F(CliRender, CornellBoxRedWallLeftGreenWallRight) {
     const std::string out = path("cornell.pfm");
     const RunResult run =
-        runCli("render " + quote(kCornellBox) + " --image " + quote(out) + " --size 96x96");
+        runCli("render " + quote(kCornell) + " --image " + quote(out) + " --size 96x96");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     const Image image = readPfm(out);
     // Middle height of the left and right thirds.
@@ -146,15 +146,15 @@ TEST_F(CliRender, CornellBoxRedWallLeftGreenWallRight) {
 
 TEST_F(CliRender, PngHasRequestedSizeAndDefaultFollowsCameraAspect) {
     const std::string sized = path("sized.png");
-    RunResult run = runCli("render " + quote(kCornellBox) + " --image " + quote(sized) +
+    RunResult run = runCli("render " + quote(kCornell) + " --image " + quote(sized) +
                            " --size 96x64 --exposure -1");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_EQ(pngSize(sized), (std::array<int, 2>{96, 64}));
 
     const std::string byDefault = path("default.png");
-    run = runCli("render " + quote(kCornellBox) + " --image " + quote(byDefault));
+    run = runCli("render " + quote(kCornell) + " --image " + quote(byDefault));
     ASSERT_EQ(run.exitCode, 0) << run.output;
-    const Scene scene = loadGltf(kCornellBox);
+    const Scene scene = loadGltf(kCornell);
     const double aspect =
         scene.camera && scene.camera->aspectRatio ? *scene.camera->aspectRatio : 1.0;
     EXPECT_EQ(pngSize(byDefault),
@@ -171,7 +171,7 @@ TEST_F(CliRender, MissingSceneFailsWithOneLineNamingIt) {
 }
 
 TEST_F(CliRender, CommandLineMistakesExitWithCode2) {
-    const std::string scene = quote(kCornellBox);
+    const std::string scene = quote(kCornell);
     const std::string image = " --image " + quote(path("x.png"));
     for (const std::string& args : std::vector<std::string>{
              "render " + scene + image + " --size 0x64",
@@ -199,7 +199,7 @@ TEST_F(CliRender, ExistingOutputIsKeptWithoutForce) {
     const std::string out = path("existing.png");
     std::ofstream(out) << "precious";
     const std::string args =
-        "render " + quote(kCornellBox) + " --image " + quote(out) + " --size 16x16";
+        "render " + quote(kCornell) + " --image " + quote(out) + " --size 16x16";
     const RunResult refused = runCli(args);
     EXPECT_NE(refused.exitCode, 0);
     EXPECT_EQ(lineCount(refused.output), 1u) << refused.output;

@@ -24,7 +24,7 @@ using nlohmann::json;
 using test::runCli;
 using test::shellQuote;
 
-const std::string kCornell = test::sourcePath("scenes/cornell-box.gltf");
+using test::kCornell;
 
 // Key path ("frames[].seconds.total") -> the type column ("integer or null").
 using Schema = std::map<std::string, std::string>;

@@ -29,8 +29,8 @@ using test::jsonAt;
 using test::runCli;
 using test::shellQuote;
 
-const std::string kCornell = test::sourcePath("scenes/cornell-box.gltf");
-const std::string kReference = test::sourcePath("tests/data/cornell-box-solved.pfm");
+using test::kCornell;
+const std::string kSolvedReference = test::sourcePath("tests/data/cornell-box-solved.pfm");
 
 TEST(CliSolve, CornellBoxReportImageAndExport) {
     const test::TempDir dir;
@@ -124,8 +124,8 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
     const float* nearGreen = image.pixel(98, 118);
     EXPECT_GT(nearRed[0] / nearRed[1], nearGreen[0] / nearGreen[1]);
 
-    if (std::getenv("RADIOSITY_UPDATE_REFERENCES")) std::filesystem::copy_file(pfm, kReference, std::filesystem::copy_options::overwrite_existing);
-    const Image reference = readPfm(kReference);
+    if (std::getenv("RADIOSITY_UPDATE_REFERENCES")) std::filesystem::copy_file(pfm, kSolvedReference, std::filesystem::copy_options::overwrite_existing);
+    const Image reference = readPfm(kSolvedReference);
     ASSERT_EQ(reference.rgb.size(), image.rgb.size());
     // Tolerance: the solve is deterministic; rasterisation on lavapipe too.
     // Mean absolute difference under 1% of the mean, and under 1% of pixels

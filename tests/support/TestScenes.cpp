@@ -1,5 +1,7 @@
 #include "support/TestScenes.h"
 
+#include "radiosity/Gltf.h"
+
 namespace rad::test {
 
 std::uint32_t addMaterial(Scene& scene, glm::dvec3 reflectance, glm::dvec3 emission, std::string name) {
@@ -155,5 +157,7 @@ Scene doorwayScene(bool doorDynamic) {
 }
 
 std::string sourcePath(const std::string& relative) { return std::string(RADIOSITY_SOURCE_DIR) + "/" + relative; }
+
+Scene office() { return loadGltf(sourcePath("scenes/office.gltf")); }
 
 }  // namespace rad::test

@@ -44,5 +44,8 @@ Scene doorwayScene(bool doorDynamic = true);
 glm::dvec3 doorHinge();
 
 std::string sourcePath(const std::string& relative);
+// The shipped scenes the tests use.
+inline const std::string kCornell = sourcePath("scenes/cornell-box.gltf");
+Scene office();  // scenes/office.gltf, loaded
 
 }  // namespace rad::test

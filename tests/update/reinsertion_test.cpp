@@ -45,7 +45,7 @@ void expectCovered(const Engine& engine, std::uint32_t object, const char* when)
     EXPECT_EQ(own.missing + own.doubled, 0) << when << ", pairs on the chosen object: " << own.firstBad;
 }
 
-Scene office() { return loadGltf(test::sourcePath("scenes/office.gltf")); }
+using test::office;
 
 // Choosing a desk of the office (not marked dynamic): nothing moved, so the
 // solution stays; then it moves and turns, and must match a full solve.
