@@ -168,10 +168,9 @@ std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dir
     return visited;
 }
 
-bool Solver::finiteAndBounded() const {
+glm::dvec3 Solver::radiosityBound() const {
     // With the guard, no leaf receives more than the brightest leaf sends, so
     // in each channel B <= E_max + rho_max B_max: B_max <= E_max / (1 - rho_max).
-    // The polygons' means stay under it too.
     glm::dvec3 emission(0.0), rho(0.0);
     for (std::uint32_t p = 0; p < h_.polygonCount(); ++p) {
         const ElementId e = h_.polygonElement(p);
@@ -179,18 +178,54 @@ bool Solver::finiteAndBounded() const {
         emission = glm::max(emission, h_[e].emission);
         rho = glm::max(rho, h_[e].reflectance);
     }
+    glm::dvec3 bound(INFINITY);
+    for (int c = 0; c < 3; ++c)
+        if (guard_ && rho[c] < 1.0) bound[c] = emission[c] / (1.0 - rho[c]);
+    return bound;
+}
+
+bool Solver::finiteAndBounded() const {
+    // The polygons' means stay under the bound too.
+    const glm::dvec3 bound = radiosityBound();
     for (std::uint32_t p = 0; p < h_.polygonCount(); ++p) {
         const ElementId e = h_.polygonElement(p);
         if (e == kNone) continue;
         const glm::dvec3& b = h_[e].radiosity;
         for (int c = 0; c < 3; ++c) {
             if (!std::isfinite(b[c])) return false;
-            if (guard_ && rho[c] < 1.0 &&
-                b[c] > emission[c] / (1.0 - rho[c]) * (1.0 + 1e-6) + 1e-300)
-                return false;
+            if (b[c] > bound[c] * (1.0 + 1e-6) + 1e-300) return false;
         }
     }
     return true;
+}
+
+void Solver::saveRadiosity(std::vector<glm::dvec3>& into) const {
+    into.resize(h_.size());
+    for (ElementId id = 0; id < h_.size(); ++id) into[id] = h_[id].radiosity;
+}
+
+glm::dvec3 Solver::leafChange(const std::vector<glm::dvec3>& before) const {
+    glm::dvec3 change(0.0);
+    for (ElementId id = 0; id < h_.size(); ++id) {
+        const HElement& e = h_[id];
+        if (e.isSurface() && e.isLeaf()) change += e.area * glm::abs(e.radiosity - before[id]);
+    }
+    return change;
+}
+
+void Solver::pullClusterPowers(ElementId id) {
+    for (ElementId c : h_[id].children)
+        if (!h_[c].isSurface()) pullClusterPowers(c);
+    h_.pullPower(id);
+}
+
+void Solver::extrapolate(const std::vector<glm::dvec3>& before, const glm::dvec3& factor) {
+    const glm::dvec3 bound = radiosityBound();
+    for (ElementId id = 0; id < h_.size(); ++id) {
+        HElement& e = h_[id];
+        e.radiosity = glm::clamp(e.radiosity + factor * (e.radiosity - before[id]), glm::dvec3(0.0), bound);
+    }
+    if (!h_[h_.root()].isSurface()) pullClusterPowers(h_.root());
 }
 
 SolveResult Solver::solve(const SolveSettings& settings,
@@ -199,7 +234,14 @@ SolveResult Solver::solve(const SolveSettings& settings,
     SolveResult result;
     double previous = 0.0;
     int growing = 0;  // consecutive sweeps whose change grew
+    // Aitken's extrapolation: the state before the sweep, the last change
+    // and its ratio per channel, and the sweeps since the last step.
+    std::vector<glm::dvec3> before;
+    glm::dvec3 lastChange(0.0), lastRatio(-1.0);
+    int sweepsSinceStep = 0;
+    double slowest = 0.0;  // the largest ratio an extrapolation used
     for (int it = 1; it <= settings.maxIterations; ++it) {
+        if (settings.extrapolate) saveRadiosity(before);
         gatherAll();
         const double delta = pushPull();
         result.iterations = it;
@@ -229,7 +271,10 @@ SolveResult Solver::solve(const SolveSettings& settings,
             return result;
         }
         if (it >= 2 && previous > 0.0) {
-            const double r = delta / previous;
+            // After an extrapolation the first sweeps fall fast (the faster
+            // modes), while what the step left of the slowest one falls at
+            // its own ratio: the estimate takes the slower of the two.
+            const double r = std::max(delta / previous, slowest);
             if (r < 1.0) {
                 result.estimatedError = delta * r / (1.0 - r);
                 if (result.estimatedError < settings.tolerance) {
@@ -242,6 +287,27 @@ SolveResult Solver::solve(const SolveSettings& settings,
             }
         }
         previous = delta;
+        if (!settings.extrapolate) continue;
+        const glm::dvec3 change = leafChange(before);
+        glm::dvec3 ratio(-1.0), factor(0.0);
+        bool steady = ++sweepsSinceStep > kSweepsBeforeExtrapolating;
+        for (int c = 0; c < 3; ++c) {
+            if (!(change[c] > 0.0)) continue;  // a channel without light
+            ratio[c] = lastChange[c] > 0.0 ? change[c] / lastChange[c] : -1.0;
+            steady = steady && ratio[c] > 0.0 && ratio[c] < 1.0 &&
+                     std::abs(ratio[c] - lastRatio[c]) <= kSteadyRatio * (1.0 - ratio[c]);
+            if (ratio[c] > 0.0 && ratio[c] < 1.0) factor[c] = ratio[c] / (1.0 - ratio[c]);
+        }
+        lastChange = change;
+        lastRatio = ratio;
+        if (!steady) continue;
+        extrapolate(before, factor);
+        for (int c = 0; c < 3; ++c) slowest = std::max(slowest, ratio[c]);
+        // The next sweeps measure what the step left: no ratio spans it.
+        previous = 0.0;
+        growing = 0;
+        lastChange = glm::dvec3(0.0);
+        sweepsSinceStep = 0;
     }
     result.status = Status::IterationLimit;
     return result;

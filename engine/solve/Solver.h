@@ -119,6 +119,21 @@ class Solver {
     // Whether every polygon's radiosity is finite and, with the guard, under
     // the bound no solution can exceed (E_max / (1 - rho_max) per channel).
     bool finiteAndBounded() const;
+    // That bound per channel (infinite where rho_max >= 1 or without the guard).
+    glm::dvec3 radiosityBound() const;
+
+    // Aitken's extrapolation (SolveSettings::extrapolate). The state a sweep
+    // starts from, the surface leaves' area-weighted change per channel, and
+    // the step B += factor (B - before) on every element, kept within
+    // [0, bound], with the clusters' facet powers pulled again from it.
+    void saveRadiosity(std::vector<glm::dvec3>& into) const;
+    glm::dvec3 leafChange(const std::vector<glm::dvec3>& before) const;
+    void extrapolate(const std::vector<glm::dvec3>& before, const glm::dvec3& factor);
+    void pullClusterPowers(ElementId id);
+    // Sweeps after the start or an extrapolation before the next one, and how
+    // steady the ratio must be: |r - r_before| <= kSteadyRatio (1 - r).
+    static constexpr int kSweepsBeforeExtrapolating = 3;
+    static constexpr double kSteadyRatio = 0.02;
 
     Hierarchy& h_;
     LinkStore& links_;
