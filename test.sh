@@ -1,25 +1,23 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds with warnings as errors, runs every test:
-# once normally and once under AddressSanitizer + UBSan.
+# Installs what is missing, builds with warnings as errors and runs every
+# test once, under AddressSanitizer + UBSan (a sanitizer run asserts all that a
+# plain run does, and catches memory errors and undefined behaviour besides);
+# then the engine thread under ThreadSanitizer. ./run.sh builds the Release
+# configuration users run.
 set -euo pipefail
 cd "$(dirname "$0")"
 source .ci/deps.sh
 install_missing_packages
 
 jobs=$(nproc)
-run_suite() {
-  local dir=$1; shift
-  echo "== configure and build $dir ($*)"
-  cmake -S . -B "$dir" -DRADIOSITY_WERROR=ON "$@" >/dev/null
-  cmake --build "$dir" -j"$jobs"
-  echo "== test $dir"
-  ctest --test-dir "$dir" --output-on-failure -j"$jobs"
-}
-
-run_suite build -DCMAKE_BUILD_TYPE=Release
+echo "== configure and build build-asan (RelWithDebInfo, ASan + UBSan, -Werror)"
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRADIOSITY_SANITIZE=ON -DRADIOSITY_WERROR=ON >/dev/null
+cmake --build build-asan -j"$jobs"
+echo "== test build-asan"
 # Leak checking is off: the Vulkan driver keeps process-lifetime allocations.
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  run_suite build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRADIOSITY_SANITIZE=ON
+  ctest --test-dir build-asan --output-on-failure -j"$jobs"
+
 # The engine thread under ThreadSanitizer: the viewer's headless stress mode
 # sends transforms from another thread while snapshots are read.
 echo "== ThreadSanitizer: engine thread"
