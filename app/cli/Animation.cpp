@@ -75,6 +75,21 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
             }
             record.fullSolveSeconds = references->seconds[f - 1];
             record.error = compareSamples(engine.samples(), references->samples[f - 1]);
+            if (references->convergedEpsilon) {
+                if (references->converged.size() < std::size_t(f)) {
+                    const auto t = std::chrono::steady_clock::now();
+                    EngineSettings finer = settings;
+                    finer.epsilon = *references->convergedEpsilon;
+                    Engine converged(engine.scene(), finer);
+                    const SolveStats& st = converged.solve();
+                    if (!st.converged)
+                        std::fprintf(stderr, "warning: the reference of frame %d (epsilon %g) did not converge: %s\n", f,
+                                     finer.epsilon, st.message.c_str());
+                    references->convergedSeconds.push_back(secondsSince(t));
+                    references->converged.push_back(converged.samples());
+                }
+                record.errorVsConverged = compareSamples(engine.samples(), references->converged[f - 1]);
+            }
         }
         run.frames.push_back(record);
         if (onFrame) onFrame(f, engine, &run.frames.back());

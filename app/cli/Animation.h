@@ -36,6 +36,8 @@ struct FrameRecord {
     std::optional<double> targetSeconds;
     std::optional<double> fullSolveSeconds;
     std::optional<SolutionError> error;  // against a from-scratch solve of the frame
+    // Against the converged reference of the frame (References::convergedEpsilon).
+    std::optional<SolutionError> errorVsConverged;
 };
 
 struct AnimationRun {
@@ -53,11 +55,17 @@ struct AnimationRun {
 struct References {
     std::vector<RadiositySamples> samples;
     std::vector<double> seconds;
+    // With an epsilon: each frame solved again from scratch at that finer
+    // epsilon, the converged answer the user should see.
+    std::optional<double> convergedEpsilon;
+    std::vector<RadiositySamples> converged;
+    std::vector<double> convergedSeconds;
 };
 
 // Solves `scene`, chooses `object` as the dynamic object and plays the motion.
 // With `references` (empty on the first call, filled by it) every frame is
-// compared with a from-scratch solve. `onFrame` sees the engine after each
+// compared with a from-scratch solve, and with its converged reference when
+// one is asked for. `onFrame` sees the engine after each
 // frame, with its record (frame 0: the initial solution, with the choice of
 // the object as its record). Throws on bad input.
 AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::string& object,

@@ -33,6 +33,7 @@ struct SweepSettings {
     std::vector<double> rates;                        // target frame rates
     std::string out;
     EngineSettings engine;
+    std::optional<double> referenceEpsilon;  // default: engine.epsilon / 10
     bool force = false;
 };
 
@@ -45,6 +46,9 @@ struct Row {
     double medianWorstObjectRms = 0.0, worstObjectRms = 0.0;
     double medianSpent = 0.0, medianBudget = 0.0;
     double medianEstimatedError = 0.0;  // FrameStats::estimatedError
+    // Against the converged reference (a finer epsilon) instead of the full
+    // solve at the same settings.
+    double medianRmsReference = 0.0, worstRmsReference = 0.0;
 };
 
 // Spearman's rank correlation of two series (ties share their mean rank).
@@ -97,6 +101,7 @@ int sweep(const SweepSettings& s) {
     std::filesystem::create_directories(out);
 
     References references;  // the from-scratch solves, shared by every run
+    references.convergedEpsilon = s.referenceEpsilon.value_or(settings.epsilon / 10.0);
     std::vector<Row> rows;
     std::vector<double> allEstimated, allRms;  // every frame of every run
     auto play = [&](Row row, const BudgetControlSetting& control) {
@@ -105,8 +110,10 @@ int sweep(const SweepSettings& s) {
         const AnimationRun run =
             runAnimation(scene, settings, request.object, request.motion, request.frames, control, &references);
         if (rows.empty()) printWarnings(run.initial.warnings);  // every run solves the same: say it once
-        std::vector<double> seconds, rms, objectRms, spent, budget, estimated;
+        std::vector<double> seconds, rms, objectRms, spent, budget, estimated, rmsReference;
         for (const FrameRecord& f : run.frames) {
+            rmsReference.push_back(f.errorVsConverged->rms);
+            row.worstRmsReference = std::max(row.worstRmsReference, f.errorVsConverged->rms);
             estimated.push_back(f.stats.estimatedError);
             allEstimated.push_back(f.stats.estimatedError);
             allRms.push_back(f.error->rms);
@@ -126,9 +133,12 @@ int sweep(const SweepSettings& s) {
         row.medianSpent = median(spent);
         row.medianBudget = median(budget);
         row.medianEstimatedError = median(estimated);
-        std::printf("%-10s %-8s median frame %.4f s, worst %.4f s, median rms %.4f, worst rms %.4f\n", row.kind.c_str(),
+        row.medianRmsReference = median(rmsReference);
+        std::printf("%-10s %-8s median frame %.4f s, worst %.4f s, median rms %.4f, worst rms %.4f, "
+                    "median rms vs reference %.4f\n",
+                    row.kind.c_str(),
                     row.kind == "budget" ? budgetText(row.budget).c_str() : std::to_string(*row.targetFps).c_str(),
-                    row.medianSeconds, row.worstSeconds, row.medianRms, row.worstRms);
+                    row.medianSeconds, row.worstSeconds, row.medianRms, row.worstRms, row.medianRmsReference);
         rows.push_back(row);
     };
     for (const auto& b : s.budgets) play(Row{"budget", b, std::nullopt}, BudgetControlSetting{b, std::nullopt});
@@ -138,7 +148,8 @@ int sweep(const SweepSettings& s) {
     Report runs = Report::array();
     std::string csv =
         "kind,budget,target_fps,target_seconds,median_seconds,worst_seconds,median_rms,worst_rms,worst_max,"
-        "median_worst_object_rms,worst_object_rms,median_spent,median_budget,median_estimated_error\n";
+        "median_worst_object_rms,worst_object_rms,median_spent,median_budget,median_estimated_error,"
+        "median_rms_reference,worst_rms_reference\n";
     for (const Row& r : rows) {
         Report run{{"kind", r.kind}, {"budget", valueOrNull(r.budget)}};
         if (r.targetFps) {
@@ -154,15 +165,18 @@ int sweep(const SweepSettings& s) {
                     {"worst_object_rms", r.worstObjectRms},
                     {"median_spent", r.medianSpent},
                     {"median_budget", r.medianBudget},
-                    {"median_estimated_error", r.medianEstimatedError}});
+                    {"median_estimated_error", r.medianEstimatedError},
+                    {"median_rms_reference", r.medianRmsReference},
+                    {"worst_rms_reference", r.worstRmsReference}});
         runs.push_back(run);
         char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", r.kind.c_str(),
+        std::snprintf(line, sizeof line, "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                      r.kind.c_str(),
                       r.kind == "budget" ? budgetText(r.budget).c_str() : "",
                       r.targetFps ? std::to_string(*r.targetFps).c_str() : "",
                       r.targetFps ? std::to_string(1.0 / *r.targetFps).c_str() : "", r.medianSeconds, r.worstSeconds,
                       r.medianRms, r.worstRms, r.worstMax, r.medianWorstObjectRms, r.worstObjectRms, r.medianSpent,
-                      r.medianBudget, r.medianEstimatedError);
+                      r.medianBudget, r.medianEstimatedError, r.medianRmsReference, r.worstRmsReference);
         csv += line;
     }
     writeReport((out / "trade.json").string(), {{"scene", scenePath},
@@ -170,6 +184,8 @@ int sweep(const SweepSettings& s) {
                                                 {"frames", request.frames},
                                                 {"epsilon", settings.epsilon},
                                                 {"median_full_solve_seconds", median(references.seconds)},
+                                                {"reference_epsilon", *references.convergedEpsilon},
+                                                {"median_reference_solve_seconds", median(references.convergedSeconds)},
                                                 {"estimate_rank_correlation", rankCorrelation(allEstimated, allRms)},
                                                 {"runs", runs}});
     writeFileAtomically((out / "trade.csv").string(), csv);
@@ -178,8 +194,12 @@ int sweep(const SweepSettings& s) {
     plot::Chart trade;
     trade.title = "Update time against error, one point per budget";
     trade.xLabel = "median frame time (s)";
-    trade.yLabel = "median rms error vs full solve";
-    plot::Series perBudget{"budget (link updates per frame)", {}, {}, true, true, {0.1f, 0.2f, 0.8f}, {}};
+    trade.yLabel = "median rms error";
+    plot::Series perBudget{"vs full solve, same epsilon", {}, {}, true, true, {0.1f, 0.2f, 0.8f}, {}};
+    char referenceName[96];
+    std::snprintf(referenceName, sizeof referenceName, "vs converged reference (epsilon %g)",
+                  *references.convergedEpsilon);
+    plot::Series perBudgetReference{referenceName, {}, {}, true, true, {0.1f, 0.6f, 0.2f}, {}};
     plot::Chart rate;
     rate.title = "Achieved against target frame time";
     rate.xLabel = "target frame time (s)";
@@ -191,6 +211,9 @@ int sweep(const SweepSettings& s) {
             perBudget.x.push_back(r.medianSeconds);
             perBudget.y.push_back(r.medianRms);
             perBudget.pointLabels.push_back(budgetText(r.budget));
+            perBudgetReference.x.push_back(r.medianSeconds);
+            perBudgetReference.y.push_back(r.medianRmsReference);
+            perBudgetReference.pointLabels.push_back(budgetText(r.budget));
         } else {
             perRate.x.push_back(1.0 / *r.targetFps);
             perRate.y.push_back(r.medianSeconds);
@@ -200,6 +223,7 @@ int sweep(const SweepSettings& s) {
         }
     }
     trade.series.push_back(perBudget);
+    trade.series.push_back(perBudgetReference);
     rate.series.push_back(perRate);
     if (hi > 0.0) rate.diagonal = std::pair(lo, hi);
     plot::writeCharts({trade, rate}, (out / "trade").string(), force);
@@ -215,8 +239,9 @@ Command addSweep(CLI::App& cli) {
     CLI::App* c = cli.add_subcommand("sweep", "the speed/accuracy trade of budgets and target frame rates");
     c->footer(
         "Plays the motion once per budget and once per target frame rate, comparing\n"
-        "every frame with a from-scratch solve, and writes the trade between update\n"
-        "time and error as JSON, CSV and a plot. Needs at least one --translate or --rotate.");
+        "every frame with a from-scratch solve at the same settings and with a converged\n"
+        "reference (the frame solved at --reference-epsilon), and writes the trade between\n"
+        "update time and error as JSON, CSV and a plot. Needs at least one --translate or --rotate.");
     addScene(*c, s->scene);
     addMotionOptions(*c, s->motion);
     c->add_option("--budgets", "link-update budgets per frame, inf for none")
@@ -239,6 +264,11 @@ Command addSweep(CLI::App& cli) {
     c->add_option("--out", s->out, "where trade.json, trade.csv, trade.png and trade.svg go")
         ->type_name("DIR")
         ->required();
+    c->add_option("--reference-epsilon", "epsilon of the converged reference each frame is also compared with")
+        ->type_name("E")
+        ->check(positiveNumber())
+        ->each([&e = s->referenceEpsilon](const std::string& text) { e = parseNumber(text); })
+        ->default_str("epsilon / 10");
     addFlag(*c, "--force", s->force, "overwrite existing output files");
     addEngineOptions(*c, s->engine);
     return {c, [s] { return sweep(*s); }};

@@ -166,7 +166,7 @@ TEST(CliSweep, WritesTheTradeTablesAndPlot) {
     const std::string out = (dir / "sweep").string();
     const auto r = runCli("sweep " + shellQuote(kCornell) +
                           " --object short-block --frames 2 --translate 0,0,0.1 --budgets 0,inf --target-fps 30"
-                          " --out " + shellQuote(out));
+                          " --reference-epsilon 1.5e-5 --out " + shellQuote(out));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     for (const char* name : {"trade.json", "trade.csv", "trade.png", "trade.svg"})
         EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / name)) << name;
@@ -175,7 +175,7 @@ TEST(CliSweep, WritesTheTradeTablesAndPlot) {
     EXPECT_NE(csv.find("budget,inf,"), std::string::npos);
     EXPECT_EQ(csv.rfind("kind,budget,target_fps,target_seconds,median_seconds,worst_seconds,median_rms,worst_rms,"
                         "worst_max,median_worst_object_rms,worst_object_rms,median_spent,median_budget,"
-                        "median_estimated_error\n",
+                        "median_estimated_error,median_rms_reference,worst_rms_reference\n",
                         0),
               0u)
         << csv;
@@ -212,6 +212,19 @@ TEST(CliSweep, WritesTheTradeTablesAndPlot) {
     EXPECT_LE(jsonAt(runs, "/1/median_rms"), 0.01);
     EXPECT_GT(jsonAt(runs, "/0/median_rms").get<double>(), 2.0 * jsonAt(runs, "/1/median_rms").get<double>());
     EXPECT_LT(jsonAt(runs, "/0/median_spent"), jsonAt(runs, "/1/median_spent"));
+    // Against the converged reference (epsilon 1.5e-5, a third of the
+    // default): the unlimited update is as far from it as the full solve at
+    // the same settings is, that is by the discretisation error, which is
+    // larger than what the update itself costs. Budget 0 adds to it.
+    EXPECT_EQ(jsonAt(trade, "/reference_epsilon"), 1.5e-5);
+    EXPECT_GT(jsonAt(trade, "/median_reference_solve_seconds"), 0.0);
+    for (const json& run : runs) {
+        ASSERT_TRUE(jsonAt(run, "/median_rms_reference").is_number());
+        EXPECT_GE(jsonAt(run, "/worst_rms_reference"), jsonAt(run, "/median_rms_reference"));
+    }
+    EXPECT_GT(jsonAt(runs, "/1/median_rms_reference").get<double>(), jsonAt(runs, "/1/median_rms").get<double>());
+    EXPECT_GT(jsonAt(runs, "/0/median_rms_reference").get<double>(), jsonAt(runs, "/1/median_rms_reference").get<double>());
+    EXPECT_NE(test::readFile(out + "/trade.svg").find("converged reference"), std::string::npos);
     EXPECT_NE(test::readFile(out + "/trade.svg").find("Achieved against target"), std::string::npos);
 }
 

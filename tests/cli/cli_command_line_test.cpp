@@ -116,6 +116,8 @@ TEST(CliCommandLine, MistakesExitWith2AndOneLineNamingThem) {
         {"sweep " + scene + move + " --out " + out + " --budgets 0,,inf", "--budgets"},
         {"sweep " + scene + move + " --out " + out + " --target-fps 30,0", "--target-fps"},
         {"sweep " + scene + move + " --out " + out + " --max-memory 12KB", "--max-memory"},
+        {"sweep " + scene + move + " --out " + out + " --reference-epsilon 0", "--reference-epsilon"},
+        {"sweep " + scene + move + " --out " + out + " --reference-epsilon nan", "--reference-epsilon"},
     };
     for (const auto& [args, named] : cases) {
         const test::RunResult r = runCli(args);
