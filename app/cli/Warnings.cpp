@@ -18,6 +18,14 @@ std::vector<Warning> importWarnings(const ImportNotes& notes) {
                       "' in place (the same geometry twice): dropped at import";
         out.push_back({"duplicates", message, {d.kept, d.dropped}, static_cast<double>(d.count)});
     }
+    for (const ClampedReflectance& c : notes.clampedReflectance) {
+        char message[256];
+        std::snprintf(message, sizeof message,
+                      "material '%s' has a base colour of %g: its reflectance is clamped to %g (no surface "
+                      "reflects all its light)",
+                      c.material.c_str(), c.largest, kMaxReflectance);
+        out.push_back({"reflectance_clamped", message, {}, c.largest});
+    }
     return out;
 }
 

@@ -543,12 +543,17 @@ class Importer {
         glm::dvec3 rho(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]);
         if (pbr.baseColorTexture.index >= 0) rho *= textureMean(pbr.baseColorTexture.index, item);
         for (int c = 0; c < 3; ++c) {
-            if (!(rho[c] >= 0.0 && rho[c] < 1.0)) {
+            if (!(rho[c] >= 0.0 && rho[c] <= 1.0)) {
                 std::ostringstream s;
                 s << "reflectance " << rho[c] << " in channel " << c
-                  << " is outside [0,1) (baseColorFactor times base colour texture mean)";
+                  << " is outside [0,1] (baseColorFactor times base colour texture mean)";
                 fail(item, s.str());
             }
+        }
+        const double largest = std::max({rho.x, rho.y, rho.z});
+        if (largest > kMaxReflectance) {
+            notes_.clampedReflectance.push_back({out.name, largest});
+            rho = glm::min(rho, glm::dvec3(kMaxReflectance));
         }
         out.reflectance = rho;
 

@@ -153,9 +153,11 @@ TEST(CliReportSchema, SweepReportMatchesTheReadme) {
     // Both kinds of run: budgets (one of them unlimited) and a target frame rate.
     const auto r = runCli("sweep " + shellQuote(kCornell) +
                           " --object short-block --frames 1 --translate 0,0,0.05 --budgets 0,inf --target-fps 30"
-                          " --reference-epsilon 2.5e-5 --out " + shellQuote(out));
+                          " --epsilon 2e-4 --out " + shellQuote(out));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     expectReportMatchesReadme({out + "/trade.json"}, "### The `sweep` report");
+    // The converged reference defaults to a tenth of the epsilon.
+    EXPECT_DOUBLE_EQ(test::readJson(out + "/trade.json").at("reference_epsilon").get<double>(), 2e-5);
 }
 
 }  // namespace

@@ -1034,7 +1034,7 @@ TEST(GltfImportErrors, InfiniteFactor) {
 
 TEST(GltfImportErrors, ReflectanceOutsideUnitInterval) {
     TempDir dir;
-    for (const char* factor : {"[1,0.5,0.5,1]", "[0.5,-0.1,0.5,1]"}) {
+    for (const char* factor : {"[1.2,0.5,0.5,1]", "[0.5,-0.1,0.5,1]"}) {
         GltfBuilder g;
         const int mat =
             g.addMaterial("{\"name\":\"White\",\"pbrMetallicRoughness\":{\"baseColorFactor\":" +
@@ -1044,15 +1044,30 @@ TEST(GltfImportErrors, ReflectanceOutsideUnitInterval) {
         const fs::path file = g.writeEmbedded(dir);
         const std::string message = importError(file);
         expectOneLineError(message, file, "material 'White'");
-        EXPECT_NE(message.find("[0,1)"), std::string::npos) << message;
+        EXPECT_NE(message.find("[0,1]"), std::string::npos) << message;
     }
-    // No baseColorFactor means white (1,1,1): also not a valid reflectance.
+}
+
+// Modelling tools write white as 1, and glTF's default base colour (no
+// pbrMetallicRoughness at all) is white: read as kMaxReflectance, noted.
+TEST(GltfImport, BaseColourOneIsClampedWithANote) {
+    TempDir dir;
     GltfBuilder g;
-    const int mat = g.addMaterial("{}");
-    addRectMesh(g, "Rect", mat);
-    g.addNode("\"name\":\"Rect\",\"mesh\":0");
-    const fs::path file = g.writeEmbedded(dir, "unnamed.gltf");
-    expectOneLineError(importError(file), file, "material 0");
+    const int white = g.addMaterial("{\"name\":\"Paper\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0.5,0.25,1]}}");
+    const int unset = g.addMaterial("{}");
+    addRectMesh(g, "Sheet", white);
+    addRectMesh(g, "Card", unset);
+    g.addNode("\"name\":\"Sheet\",\"mesh\":0");
+    g.addNode("\"name\":\"Card\",\"mesh\":1,\"translation\":[0,0,2]");
+    const fs::path file = g.writeEmbedded(dir);
+    ImportNotes notes;
+    const Scene scene = loadGltf(file.string(), &notes);
+    ASSERT_EQ(scene.materials.size(), 2u);
+    EXPECT_EQ(scene.materials[0].reflectance, glm::dvec3(kMaxReflectance, 0.5, 0.25));
+    EXPECT_EQ(scene.materials[1].reflectance, glm::dvec3(kMaxReflectance));
+    ASSERT_EQ(notes.clampedReflectance.size(), 2u);
+    EXPECT_EQ(notes.clampedReflectance[0].material, "Paper");
+    EXPECT_EQ(notes.clampedReflectance[0].largest, 1.0);
 }
 
 TEST(GltfImportErrors, NegativeEmission) {

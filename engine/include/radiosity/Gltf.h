@@ -20,6 +20,18 @@ struct DuplicatePolygons {
     std::size_t count = 0;
 };
 
+// A material whose base colour reaches 1 in some channel (glTF's default
+// base colour is white): its reflectance is clamped to kMaxReflectance.
+struct ClampedReflectance {
+    std::string material;
+    double largest = 0.0;  // the largest channel before the clamp
+};
+
+// No real surface reflects all the light it receives, and a closed room of
+// reflectance 1 has no finite solution: base colours in (0.98, 1] are read as
+// 0.98 (a fresh white paint or snow). Above 1 or below 0 is an error.
+constexpr double kMaxReflectance = 0.98;
+
 struct ImportNotes {
     std::vector<std::string> lines;  // things ignored or dropped, for the log
     std::size_t degenerateTriangles = 0;
@@ -32,6 +44,7 @@ struct ImportNotes {
     // polygons facing opposite ways (a zero-thickness slab) are kept.
     std::size_t duplicatePolygons = 0;
     std::vector<DuplicatePolygons> duplicates;  // per pair of objects, in the order first met
+    std::vector<ClampedReflectance> clampedReflectance;
 };
 
 // Throws SceneError with one line naming the file and the offending item.
