@@ -141,12 +141,15 @@ UniquePipeline MeshRenderer::createPipeline(VkDevice device, VkRenderPass render
     viewport.viewportCount = 1;
     viewport.scissorCount = 1;
 
-    // Both sides are shown: light is one-sided, but a picture with holes where
-    // the back of a wall faces the camera would be harder to read.
+    // Polygons are one-sided (the scene convention): their back is not a
+    // surface and is not drawn, so a blind turned toward the window does not
+    // show as a dark stripe. Vulkan judges the winding in framebuffer space,
+    // y down; the projection's y flip (CameraView) keeps the scene's
+    // counter-clockwise fronts counter-clockwise there.
     auto raster = vkStruct<VkPipelineRasterizationStateCreateInfo>(
         VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
     raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;
+    raster.cullMode = lines ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.lineWidth = 1.0f;
 

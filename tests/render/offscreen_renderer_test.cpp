@@ -11,6 +11,7 @@
 #include <string>
 
 #include "image/Image.h"
+#include "render/CameraView.h"
 #include "render/OffscreenRenderer.h"
 #include "render/VulkanContext.h"
 #include "radiosity/Snapshot.h"
@@ -31,10 +32,23 @@ void addTriangle(MeshSnapshot& mesh, std::array<glm::vec3, 3> p, std::array<glm:
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
 }
 
+// A triangle given in clip space, wound so that it faces the viewer: the
+// renderer culls back faces (OneSidedPanelSeenFromBehindIsNotDrawn), and
+// these tests are about rasterisation, not facing. A front face is
+// counter-clockwise in Vulkan's framebuffer space (y down).
+void addFrontTriangle(MeshSnapshot& mesh, std::array<glm::vec3, 3> p, std::array<glm::vec3, 3> c) {
+    const glm::vec2 u(p[1] - p[0]), v(p[2] - p[0]);
+    if (u.x * v.y - u.y * v.x > 0.0f) {
+        std::swap(p[1], p[2]);
+        std::swap(c[1], c[2]);
+    }
+    addTriangle(mesh, p, c);
+}
+
 // Axis-aligned rectangle at depth z, two triangles.
 void addRect(MeshSnapshot& mesh, float x0, float y0, float x1, float y1, float z, glm::vec3 color) {
-    addTriangle(mesh, {{{x0, y0, z}, {x1, y0, z}, {x1, y1, z}}}, {color, color, color});
-    addTriangle(mesh, {{{x0, y0, z}, {x1, y1, z}, {x0, y1, z}}}, {color, color, color});
+    addFrontTriangle(mesh, {{{x0, y0, z}, {x1, y0, z}, {x1, y1, z}}}, {color, color, color});
+    addFrontTriangle(mesh, {{{x0, y0, z}, {x1, y1, z}, {x0, y1, z}}}, {color, color, color});
 }
 
 // Clip-space position of a pixel centre.
@@ -84,9 +98,9 @@ class OffscreenRendererTest : public ::testing::Test {
 
 TEST_F(OffscreenRendererTest, RedTriangleLeftGreenTriangleRightOnBlack) {
     MeshSnapshot mesh;
-    addTriangle(mesh, {{{-0.9f, 0.5f, 0.5f}, {-0.1f, 0.5f, 0.5f}, {-0.5f, -0.5f, 0.5f}}},
+    addFrontTriangle(mesh, {{{-0.9f, 0.5f, 0.5f}, {-0.1f, 0.5f, 0.5f}, {-0.5f, -0.5f, 0.5f}}},
                 {kRed, kRed, kRed});
-    addTriangle(mesh, {{{0.1f, 0.5f, 0.5f}, {0.9f, 0.5f, 0.5f}, {0.5f, -0.5f, 0.5f}}},
+    addFrontTriangle(mesh, {{{0.1f, 0.5f, 0.5f}, {0.9f, 0.5f, 0.5f}, {0.5f, -0.5f, 0.5f}}},
                 {kGreen, kGreen, kGreen});
     const Image image = renderer_->render(mesh, kIdentity, 64, 48);
     ASSERT_EQ(image.width, 64);
@@ -101,6 +115,34 @@ TEST_F(OffscreenRendererTest, RedTriangleLeftGreenTriangleRightOnBlack) {
     for (auto [x, y] :
          {std::array<int, 2>{0, 0}, {63, 0}, {0, 47}, {63, 47}, {32, 24}, {16, 2}, {48, 45}})
         expectColor(image, x, y, glm::vec3(0), 0.0f);
+}
+
+// Polygons are one-sided (counter-clockwise seen from the front, as in the
+// scenes): through a real camera, a panel facing it is drawn, the same panel
+// turned away is not, and the panel behind it shows instead.
+TEST_F(OffscreenRendererTest, OneSidedPanelSeenFromBehindIsNotDrawn) {
+    const auto addWorldQuad = [](MeshSnapshot& mesh, std::array<glm::vec3, 4> q, glm::vec3 color) {
+        addTriangle(mesh, {{q[0], q[1], q[2]}}, {color, color, color});
+        addTriangle(mesh, {{q[0], q[2], q[3]}}, {color, color, color});
+    };
+    Camera camera;  // at the origin, looking down -Z, +Y up
+    camera.yfov = 1.0;
+    Aabb bounds;
+    bounds.lo = glm::dvec3(-2, -2, -3);
+    bounds.hi = glm::dvec3(2, 2, 0);
+    const glm::mat4 viewProjection = makeCameraView(camera, bounds, 1.0).viewProjectionF();
+    // Facing +Z (toward the camera): counter-clockwise seen from +Z.
+    const std::array<glm::vec3, 4> facing{{{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}}};
+    const std::array<glm::vec3, 4> away{{facing[0], facing[3], facing[2], facing[1]}};
+    const std::array<glm::vec3, 4> back{{{-2, -2, -2}, {2, -2, -2}, {2, 2, -2}, {-2, 2, -2}}};
+    for (bool turned : {false, true}) {
+        MeshSnapshot mesh;
+        addWorldQuad(mesh, turned ? away : facing, kRed);
+        addWorldQuad(mesh, back, kBlue);
+        const Image image = renderer_->render(mesh, viewProjection, 32, 32);
+        SCOPED_TRACE(turned ? "turned away" : "facing the camera");
+        expectColor(image, 16, 16, turned ? kBlue : kRed);
+    }
 }
 
 TEST_F(OffscreenRendererTest, TopOfClipSpaceIsFirstRow) {
@@ -130,7 +172,7 @@ TEST_F(OffscreenRendererTest, GouraudInterpolatesVertexColours) {
     const std::array<glm::vec3, 3> p{
         {{-0.9f, 0.9f, 0.5f}, {0.9f, 0.9f, 0.5f}, {0.0f, -0.9f, 0.5f}}};
     MeshSnapshot mesh;
-    addTriangle(mesh, p, {kRed, kGreen, kBlue});
+    addFrontTriangle(mesh, p, {kRed, kGreen, kBlue});
     const Image image = renderer_->render(mesh, kIdentity, 128, 128);
 
     const glm::vec3 centroid = (p[0] + p[1] + p[2]) / 3.0f;
@@ -192,7 +234,7 @@ TEST_F(OffscreenRendererTest, EmptySnapshotGivesBlackImage) {
 TEST_F(OffscreenRendererTest, ExposureScalesSurfacesOnTheGpuWithoutReuploading) {
     MeshSnapshot snapshot;
     addRect(snapshot, -1.0f, -1.0f, 0.0f, 1.0f, 0.5f, glm::vec3(0.3f, 0.7f, 1.5f));  // left half
-    addTriangle(snapshot, {{{0.1f, 0.9f, 0.5f}, {0.9f, 0.9f, 0.5f}, {0.5f, -0.9f, 0.5f}}},
+    addFrontTriangle(snapshot, {{{0.1f, 0.9f, 0.5f}, {0.9f, 0.9f, 0.5f}, {0.5f, -0.9f, 0.5f}}},
                 {kRed, kGreen, kBlue});  // right: interpolated colours
     const int lineRow = 40;  // a row through both shapes
     const float y = (lineRow + 0.5f) / 64.0f * 2.0f - 1.0f;  // through the pixel centres
