@@ -527,6 +527,7 @@ class Importer {
         if (found != materialMap_.end()) return found->second;
         const auto index = static_cast<std::uint32_t>(materials_.size());
         materials_.push_back(convertMaterial(gltfIndex));
+        if (model_.materials[gltfIndex].doubleSided) doubleSided_.insert(index);
         materialMap_[gltfIndex] = index;
         return index;
     }
@@ -588,7 +589,6 @@ class Importer {
         if (m.occlusionTexture.index >= 0) note(item + ": occlusionTexture ignored");
         if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
             note(item + ": metallicRoughnessTexture ignored");
-        if (m.doubleSided) note(item + ": doubleSided ignored, polygons are one-sided");
         for (const auto& [name, value] : m.extensions) {
             if (name != "KHR_materials_emissive_strength")
                 note(item + ": extension " + name + " ignored");
@@ -673,6 +673,8 @@ class Importer {
         }
         notes_.degenerateTriangles += dropped;
         if (dropped > 0) note(std::to_string(dropped) + " degenerate triangle(s) dropped");
+        if (backFaces_ > 0)
+            note(std::to_string(backFaces_) + " polygon(s) of doubleSided materials given a back face of their own");
         const std::vector<std::size_t> duplicates = dropDuplicates(polygons, 1e-9 * std::sqrt(diagonal2));
 
         Scene scene;
@@ -813,6 +815,14 @@ class Importer {
                 i += 1;
             }
             out.push_back(p);
+            if (doubleSided_.count(p.material)) {
+                // Both faces reflect: the back is a polygon of its own, the
+                // same vertices in reverse order (a zero-thickness slab,
+                // which visibility separates), lit and drawn from its side.
+                std::reverse(p.vertices.begin(), p.vertices.begin() + p.vertexCount);
+                out.push_back(p);
+                ++backFaces_;
+            }
         }
     }
 
@@ -825,6 +835,8 @@ class Importer {
     std::vector<Material> materials_;
     std::map<int, std::uint32_t> materialMap_;
     std::optional<std::uint32_t> defaultMaterial_;
+    std::set<std::uint32_t> doubleSided_;  // scene material indices
+    std::size_t backFaces_ = 0;
     std::map<int, glm::dvec3> textureMeans_;
     std::optional<Camera> camera_;
 };

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "radiosity/Engine.h"
 #include "radiosity/Gltf.h"
 #include "support/Cli.h"
 #include "support/TempDir.h"
@@ -672,7 +673,7 @@ TEST(GltfImport, UnsupportedThingsAreNotedNotFatal) {
     g.addNode("\"name\":\"Rect\",\"mesh\":0");
     ImportNotes notes;
     const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
-    EXPECT_EQ(s.polygons.size(), 1u);
+    EXPECT_EQ(s.polygons.size(), 2u);  // the doubleSided rectangle and its back face
     EXPECT_FALSE(s.camera.has_value());
     const auto noted = [&](const std::string& word) {
         for (const std::string& line : notes.lines)
@@ -682,6 +683,51 @@ TEST(GltfImport, UnsupportedThingsAreNotedNotFatal) {
     EXPECT_TRUE(noted("KHR_texture_transform"));
     EXPECT_TRUE(noted("doubleSided"));
     EXPECT_TRUE(noted("orthographic"));
+}
+
+// A doubleSided panel between two lights, one on each side: both faces are
+// polygons, each lit by the light it faces, alike (the set-up is symmetric),
+// and each as an emitter facing it over that distance lights it. The same
+// panel one-sided has one face, lit from its front only.
+TEST(GltfImport, DoubleSidedPanelIsLitOnBothSides) {
+    for (bool doubleSided : {true, false}) {
+        TempDir dir;
+        GltfBuilder g;
+        const int panel = g.addMaterial(std::string("{\"name\":\"Panel\",\"doubleSided\":") +
+                                        (doubleSided ? "true" : "false") +
+                                        ",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.5,0.5,1]}}");
+        const int light = g.addMaterial(
+            "{\"name\":\"Light\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},\"emissiveFactor\":[1,1,1]}");
+        addRectMesh(g, "Panel", panel);  // z = 0, facing +z
+        addRectMesh(g, "Lamp", light);
+        g.addNode("\"name\":\"Panel\",\"mesh\":0");
+        g.addNode("\"name\":\"Below\",\"mesh\":1,\"translation\":[0,0,-1]");  // facing +z, up at the panel
+        g.addNode("\"name\":\"Above\",\"mesh\":1,\"translation\":[0,3,1],\"rotation\":[1,0,0,0]");  // facing -z
+        ImportNotes notes;
+        const Scene scene = loadGltf(path(g.writeEmbedded(dir)), &notes);
+        ASSERT_EQ(scene.objects[0].polygonCount, doubleSided ? 2u : 1u);
+        Engine engine(scene, EngineSettings{});
+        ASSERT_TRUE(engine.solve().converged);
+        const MeshSnapshot mesh = engine.snapshot();
+        double front = 0.0, back = 0.0;
+        int frontCount = 0, backCount = 0;
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+            if (std::abs(mesh.positions[v].z) > 1e-4f) continue;  // the lamps
+            (mesh.normals[v].z > 0.0f ? front : back) += mesh.colors[v].x;
+            ++(mesh.normals[v].z > 0.0f ? frontCount : backCount);
+        }
+        ASSERT_GT(frontCount, 0);
+        front /= frontCount;
+        // rho E F with F between 0.3 and 0.5 for a 2 x 3 m rectangle 1 m away.
+        EXPECT_GT(front, 0.5 * 0.3);
+        EXPECT_LT(front, 0.5 * 0.5);
+        if (doubleSided) {
+            ASSERT_GT(backCount, 0);
+            EXPECT_NEAR(back / backCount, front, 0.02 * front);
+        } else {
+            EXPECT_EQ(backCount, 0);
+        }
+    }
 }
 
 // --- Duplicate polygons (issue 11): dropped at import, counted and named. ---
