@@ -242,7 +242,7 @@ class Importer {
             note("file has no scene; imported all root nodes");
         }
         visited_.assign(model_.nodes.size(), false);
-        for (int r : roots) visitNode(r, glm::dmat4(1.0));
+        for (int r : roots) visitNode(r, glm::dmat4(1.0), std::nullopt);
     }
 
     const tinygltf::Node& nodeAt(int index, const std::string& from) const {
@@ -287,7 +287,9 @@ class Importer {
         return t * r * s;
     }
 
-    void visitNode(int index, const glm::dmat4& parentWorld) {
+    // `group`: the pending object of a marked ancestor (extras.dynamic or
+    // extras.object), which takes the meshes of its whole subtree.
+    void visitNode(int index, const glm::dmat4& parentWorld, std::optional<std::size_t> group) {
         const tinygltf::Node& node = nodeAt(index, "scene");
         const std::string item = nodeItem(index);
         if (visited_[index])
@@ -301,12 +303,32 @@ class Importer {
         if (node.skin >= 0) note(item + ": skin ignored");
         if (!node.weights.empty()) note(item + ": morph weights ignored");
         if (!node.extensions.empty()) note(item + ": node extensions ignored");
-        if (node.mesh >= 0) addObject(index, world);
+        const bool dynamic = extrasFlag(node, "dynamic");
+        if (group) {
+            if (dynamic || extrasFlag(node, "object"))
+                note(item + ": marked as an object inside '" + pending_[*group].object.name +
+                     "', part of it");
+        } else if (dynamic || extrasFlag(node, "object")) {
+            // A chair made of legs, seat and back under one node moves as one.
+            PendingObject pending;
+            pending.item = item;
+            pending.object.name = uniqueName(index);
+            pending.object.worldFromLocal = world;
+            pending.object.dynamic = dynamic;
+            pending_.push_back(std::move(pending));
+            group = pending_.size() - 1;
+        }
+        if (node.mesh >= 0) addMesh(index, world, group);
 
         for (int child : node.children) {
             nodeAt(child, item);
-            visitNode(child, world);
+            visitNode(child, world, group);
         }
+    }
+
+    static bool extrasFlag(const tinygltf::Node& node, const char* key) {
+        return node.extras.IsObject() && node.extras.Has(key) && node.extras.Get(key).IsBool() &&
+               node.extras.Get(key).Get<bool>();
     }
 
     void visitCamera(int cameraIndex, const glm::dmat4& world, const std::string& item) {
@@ -347,19 +369,22 @@ class Importer {
         return name;
     }
 
-    void addObject(int nodeIndex, const glm::dmat4& world) {
+    // The node's mesh: an object of its own, or part of `group`'s.
+    void addMesh(int nodeIndex, const glm::dmat4& world, std::optional<std::size_t> group) {
         const tinygltf::Node& node = model_.nodes[nodeIndex];
         const std::string item = nodeItem(nodeIndex);
         if (node.mesh >= static_cast<int>(model_.meshes.size()))
             fail(item, "refers to mesh " + std::to_string(node.mesh) + " which does not exist");
 
-        PendingObject pending;
-        pending.item = item;
-        pending.object.name = uniqueName(nodeIndex);
-        pending.object.worldFromLocal = world;
-        pending.object.dynamic = node.extras.IsObject() && node.extras.Has("dynamic") &&
-                                 node.extras.Get("dynamic").IsBool() &&
-                                 node.extras.Get("dynamic").Get<bool>();
+        if (!group) {
+            PendingObject pending;
+            pending.item = item;
+            pending.object.name = uniqueName(nodeIndex);
+            pending.object.worldFromLocal = world;
+            pending_.push_back(std::move(pending));
+            group = pending_.size() - 1;
+        }
+        std::vector<WorldTriangle>& triangles = pending_[*group].triangles;
 
         const tinygltf::Mesh& mesh = model_.meshes[node.mesh];
         const std::string meshItem = quoted("mesh", mesh.name, static_cast<std::size_t>(node.mesh));
@@ -368,9 +393,8 @@ class Importer {
         const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             addPrimitive(mesh.primitives[p], meshItem + " primitive " + std::to_string(p), world,
-                         mirrored, pending.triangles);
+                         mirrored, triangles);
         }
-        pending_.push_back(std::move(pending));
     }
 
     AccessorView viewAccessor(int accessorIndex, const std::string& item, int type,

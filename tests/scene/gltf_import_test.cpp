@@ -13,9 +13,12 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "radiosity/Engine.h"
 #include "radiosity/Gltf.h"
 #include "support/Cli.h"
+#include "support/Motion.h"
 #include "support/TempDir.h"
 #include "support/TestScenes.h"
 
@@ -728,6 +731,53 @@ TEST(GltfImport, DoubleSidedPanelIsLitOnBothSides) {
             EXPECT_EQ(backCount, 0);
         }
     }
+}
+
+// A node marked extras.dynamic (or extras.object) is one object with its
+// whole subtree: a chair of seat and back under one node is one object, and
+// moves as one, within 1% of a full solve. Nodes outside it stay their own.
+TEST(GltfImport, AMarkedNodeIsOneObjectWithItsSubtree) {
+    TempDir dir;
+    GltfBuilder g;
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint32_t> idx;
+    cubeGeometry(pos, idx);  // unit cube about the origin, faces outward
+    const int cube = g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), g.addGrey("Wood", 0.6));
+    const int floor = addRectMesh(g, "Floor", g.addGrey("Floor", 0.5));  // z = 0, facing +z
+    const int lamp = addRectMesh(g, "Lamp", g.addMaterial("{\"name\":\"Light\",\"pbrMetallicRoughness\":"
+                                                          "{\"baseColorFactor\":[0,0,0,1]},\"emissiveFactor\":[5,5,5]}"));
+    const int seat = g.addNode("\"name\":\"Seat\",\"mesh\":" + std::to_string(cube) +
+                                   ",\"translation\":[0,0,0.45],\"scale\":[0.5,0.5,0.1]",
+                               false);
+    const int back = g.addNode("\"name\":\"Back\",\"mesh\":" + std::to_string(cube) +
+                                   ",\"translation\":[0,0.22,0.75],\"scale\":[0.5,0.06,0.5]",
+                               false);
+    g.addNode("\"name\":\"Chair\",\"translation\":[1,1,0],\"extras\":{\"dynamic\":true},\"children\":[" +
+              std::to_string(seat) + "," + std::to_string(back) + "]");
+    g.addNode("\"name\":\"Floor\",\"mesh\":" + std::to_string(floor));
+    g.addNode("\"name\":\"Lamp\",\"mesh\":" + std::to_string(lamp) +
+              ",\"translation\":[0.5,2.5,2],\"rotation\":[1,0,0,0],\"scale\":[0.5,0.33,1]");
+    const Scene scene = loadGltf(path(g.writeEmbedded(dir)));
+    ASSERT_EQ(scene.objects.size(), 3u);
+    EXPECT_EQ(scene.objects[0].name, "Chair");
+    EXPECT_TRUE(scene.objects[0].dynamic);
+    EXPECT_EQ(scene.objects[0].polygonCount, 12u);  // two cubes of six quads
+    EXPECT_EQ(scene.objects[1].name, "Floor");
+    EXPECT_FALSE(scene.objects[1].dynamic);
+
+    const EngineSettings settings;
+    Engine engine(scene, settings);
+    ASSERT_TRUE(engine.solve().converged);
+    ASSERT_EQ(engine.dynamicObject(), 0u);
+    const glm::dmat4 start = scene.objects[0].worldFromLocal;
+    const RadiositySamples before = engine.samples();
+    engine.moveDynamicObject(glm::translate(glm::dmat4(1.0), glm::dvec3(0.4, -0.2, 0.0)) * start);
+    // Both parts moved: every polygon of the object, by the same offset.
+    const Scene& moved = engine.scene();
+    for (std::uint32_t p = 0; p < 12; ++p)
+        EXPECT_NEAR(moved.polygons[p].vertices[0].x - scene.polygons[p].vertices[0].x, 0.4, 1e-9) << p;
+    EXPECT_GT(compareSamples(engine.samples(), before).rms, 1e-3) << "the move changed the light";
+    EXPECT_LT(test::compareWithFullSolve(engine, settings).rms, 0.01);
 }
 
 // --- Duplicate polygons (issue 11): dropped at import, counted and named. ---
