@@ -1,6 +1,7 @@
 #include "refine/Refiner.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <cmath>
 #include <span>
 
@@ -18,6 +19,9 @@ double radius(const HElement& e) { return 0.5 * glm::length(e.box.extent()); }
 // thousands of outgoing links; shifting them on every removal would not do).
 void unorderedErase(std::vector<LinkId>& list, LinkId id) {
     const auto it = std::find(list.begin(), list.end(), id);
+    // A link missing from its list is a broken hierarchy (a link refined
+    // twice); going on would write past the list.
+    if (it == list.end()) throw std::logic_error("link " + std::to_string(id) + " is not in the list it is erased from");
     *it = list.back();
     list.pop_back();
 }

@@ -71,6 +71,9 @@ std::size_t LineSpaceUpdate::controlledUpdate(std::size_t budget, FrameStats& st
             for (LinkId id : visits_[visit].candidates)
                 if (links_[id].live && !links_[id].passive) batch.push_back(id);
         }
+        // Each link once: two threads must not recompute the same link.
+        std::sort(batch.begin(), batch.end());
+        batch.erase(std::unique(batch.begin(), batch.end()), batch.end());
         tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) { recompute(batch[i]); });
         spent += batch.size();
         for (LinkId id : batch)

@@ -7,13 +7,22 @@
 #include "refine/Refiner.h"
 #include "update/LineSpaceUpdate.h"
 
+#include <unordered_set>
+
 namespace rad {
 
 void LineSpaceUpdate::updateCandidates(FrameStats& stats, std::size_t budget) {
     RefineHeap heap;
     // Drop candidates a reinstate under the budget removed; the traversal
     // recomputed them all.
-    std::erase_if(candidates_, [&](LinkId id) { return !links_[id].live || links_[id].passive; });
+    // A link reached from two visits (or again while catching up) is one
+    // candidate: updated twice, its refinement would be made twice.
+    std::vector<char> seen(links_.slots(), 0);
+    std::erase_if(candidates_, [&](LinkId id) {
+        if (!links_[id].live || links_[id].passive || seen[id]) return true;
+        seen[id] = 1;
+        return false;
+    });
     for (LinkId id : candidates_) {
         ++stats.candidates;
         if (refiner_.wouldRefine(links_[id])) {
@@ -37,13 +46,18 @@ void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats, std::s
     // Highest transfer first, in batches whose new links are computed in
     // parallel; a refinement costs the links it creates.
     std::vector<LinkId> batch, created;
+    // A link can be in the heap twice (found from the old and the new box, or
+    // pushed again with a new key); it is refined once. Refined in an earlier
+    // batch it is passive; in this one, it is in `inBatch`.
+    std::unordered_set<LinkId> inBatch;
     std::size_t left = budget;
     while (!heap.empty()) {
         batch.clear();
+        inBatch.clear();
         std::size_t cost = 0;
         while (!heap.empty()) {
             const LinkId id = heap.top().second;
-            if (!links_[id].live || links_[id].passive) {
+            if (!links_[id].live || links_[id].passive || inBatch.count(id)) {
                 heap.pop();
                 continue;
             }
@@ -52,6 +66,7 @@ void LineSpaceUpdate::refineFromHeap(RefineHeap& heap, FrameStats& stats, std::s
             if (deadline_ && !batch.empty() && cost + c > kDeadlineChunk) break;  // look at the clock
             heap.pop();
             batch.push_back(id);
+            inBatch.insert(id);
             cost += c;
         }
         if (batch.empty()) break;
