@@ -1,9 +1,9 @@
 #include "refine/Refiner.h"
 
 #include <algorithm>
-#include <stdexcept>
 #include <cmath>
 #include <span>
+#include <stdexcept>
 
 #include <tbb/parallel_for.h>
 
