@@ -222,6 +222,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     // The full sweeps left every receiver's irradiance consistent with the
     // sources' gathered B: the in-place updates start from here.
     s.refiner.takeDirty();
+    s.refiner.sortLinkLists();  // the first traversal then finds its ranges at once
     s.solved = true;
     // From here on the oracles follow the light in steps from these anchors.
     anchorOracles(s.hierarchy);
@@ -247,7 +248,7 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
     s.meshValid = false;
     if (!s.solved) return {};
     const double reinsertSeconds = secondsSince(start);
-    FrameStats f = s.updater.update(before, s.scene.objectBounds(*object), s.hierarchy[cluster].range, settings, true);
+    FrameStats f = s.updater.update(before, s.scene.objectBounds(*object), s.hierarchy.range(cluster), settings, true);
     f.reinsertion = r;
     f.updateSeconds += reinsertSeconds;
     f.totalSeconds += reinsertSeconds;
@@ -286,7 +287,7 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
     s.updater.setObstacles(motionObstacles(s.scene, *s.dynamic, before, oldToNew));
     const double moveSeconds = secondsSince(start);
-    FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy[cluster].range, settings);
+    FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy.range(cluster), settings);
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds;
     s.buildMesh(stats);

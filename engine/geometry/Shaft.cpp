@@ -72,7 +72,7 @@ Shaft::Shaft(const Aabb& a, const Aabb& b) {
                 // that direction lie on the plane, and both boxes lie on its inner side.
                 double n0 = std::abs(yj - xj) * (si ? 1.0 : -1.0);
                 double n1 = std::abs(yi - xi) * (sj ? 1.0 : -1.0);
-                const double len = std::hypot(n0, n1);
+                const double len = std::sqrt(n0 * n0 + n1 * n1);  // not hypot: a fifth of a traversal
                 if (!(len > 0.0) || !std::isfinite(len)) continue;
                 n0 /= len;
                 n1 /= len;

@@ -19,11 +19,20 @@ inline constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max()
 
 enum class ElementKind : std::uint8_t { Cluster, Surface };
 
+// The fields the line-space traversal reads for every link it passes: the
+// index range and the box of a link's ends. They live apart from the rest of
+// an H-element (Hierarchy::range, Hierarchy::box), one cache line each, so
+// that a traversal over hundreds of thousands of links does not pull in the
+// 600 bytes of geometry and solution state of every end it looks at.
+struct alignas(64) ElementBounds {
+    IndexRange range;
+    Aabb box;
+};
+
 struct HElement {
     ElementKind kind = ElementKind::Cluster;
     ElementId parent = kNone;
     std::vector<ElementId> children;  // clusters: any number; surfaces: none or four
-    IndexRange range;
 
     // Geometry. Surfaces: the patch, a part of input polygon `polygon`, given
     // by the parametric corners (u,v) of that polygon (barycentric-like for
@@ -35,7 +44,6 @@ struct HElement {
     std::uint8_t depth = 0;        // quadtree depth below the input polygon
     glm::dvec3 normal{0.0};        // surfaces
     glm::dvec3 center{0.0};
-    Aabb box;
     double area = 0.0;  // surfaces: own area; clusters: total surface area inside
 
     // Material (surfaces).
@@ -82,8 +90,12 @@ struct HElement {
     // Its links changed: its irradiance is summed again from them before the
     // next push (Refiner::takeDirty), rather than adjusted link by link.
     bool stale = false;
+    // Links were appended to `links` or `plinks`: they are out of source
+    // order (links/SourceOrder.h) until Refiner::sortLinkLists.
+    bool unordered = false;
 
-    // Links arriving here (this element is the receiver).
+    // Links arriving here (this element is the receiver), in source order
+    // (links/SourceOrder.h).
     std::vector<LinkId> links;   // active
     std::vector<LinkId> plinks;  // passive: refined, kept as line-space parents
     // Active links leaving this element (it is their source), for further

@@ -110,7 +110,7 @@ Hierarchy::Hierarchy(const Scene& scene, double minArea)
     assignRanges(root_, 0, false);
 }
 
-ElementId Hierarchy::add(HElement e) {
+ElementId Hierarchy::add(HElement e, const ElementBounds& bounds) {
     if (e.kind == ElementKind::Cluster) {
         if (!freeShapes_.empty()) {
             e.shape = freeShapes_.back();
@@ -125,9 +125,11 @@ ElementId Hierarchy::add(HElement e) {
         const ElementId id = free_.back();
         free_.pop_back();
         elements_[id] = std::move(e);
+        bounds_[id] = bounds;
         return id;
     }
     elements_.push_back(std::move(e));
+    bounds_.push_back(bounds);
     return static_cast<ElementId>(elements_.size() - 1);
 }
 
@@ -177,11 +179,12 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
     e.normal = p.normal();
     e.area = p.area();
     e.center = patchCentroid(e.patch);
-    for (int i = 0; i < p.vertexCount; ++i) e.box.extend(p.vertices[i]);
+    ElementBounds bounds;
+    for (int i = 0; i < p.vertexCount; ++i) bounds.box.extend(p.vertices[i]);
     const Material& m = scene.materials[p.material];
     e.reflectance = m.reflectance;
     e.emission = m.emission;
-    const ElementId id = add(std::move(e));
+    const ElementId id = add(std::move(e), bounds);
     polygonElements_[polygon] = id;
     return id;
 }
@@ -189,21 +192,23 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
 void Hierarchy::release(ElementId id) {
     if (elements_[id].shape != kNone) freeShapes_.push_back(elements_[id].shape);
     elements_[id] = HElement{};
+    bounds_[id] = ElementBounds{};
     free_.push_back(id);
 }
 
 void Hierarchy::finishCluster(ElementId id) {
     HElement& c = elements_[id];
-    c.box = Aabb{};
+    Aabb& box = bounds_[id].box;
+    box = Aabb{};
     c.area = 0.0;
     glm::dvec3 weighted(0.0);
     for (ElementId k : c.children) {
         const HElement& child = elements_[k];
-        c.box.extend(child.box);
+        box.extend(bounds_[k].box);
         c.area += child.area;
         weighted += child.area * child.center;
     }
-    c.center = c.area > 0.0 ? weighted / c.area : c.box.center();
+    c.center = c.area > 0.0 ? weighted / c.area : box.center();
 
     // The orientation: surfaces give their normal and 16 points on their
     // input polygon; clusters their own shape.
@@ -284,22 +289,22 @@ std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool re
         // Numbered again (attachToRoot), a surface keeps the size it had: its
         // area after a move may differ by a rounding error, and the depth of
         // its existing quadtree must stay allowed.
-        const std::uint64_t count = renumber ? e.range.size() : quadtreeIndexCount(e.area, minArea_, what);
-        e.range = {first, checkedAdd(first, count - 1, what)};
+        const std::uint64_t count = renumber ? bounds_[id].range.size() : quadtreeIndexCount(e.area, minArea_, what);
+        bounds_[id].range = {first, checkedAdd(first, count - 1, what)};
         assignQuadtreeRanges(id);
-        return elements_[id].range.last;
+        return bounds_[id].range.last;
     }
     std::uint64_t last = first;
     for (ElementId c : std::vector<ElementId>(e.children))
         last = assignRanges(c, checkedAdd(last, 1, "cluster"), renumber);
-    elements_[id].range = {first, last};
+    bounds_[id].range = {first, last};
     return last;
 }
 
 void Hierarchy::assignQuadtreeRanges(ElementId surface) {
     const std::vector<ElementId>& kids = elements_[surface].children;
     for (std::size_t k = 0; k < kids.size(); ++k) {
-        elements_[kids[k]].range = quadtreeChildRange(elements_[surface].range, static_cast<int>(k));
+        bounds_[kids[k]].range = quadtreeChildRange(bounds_[surface].range, static_cast<int>(k));
         assignQuadtreeRanges(kids[k]);
     }
 }
@@ -342,12 +347,13 @@ void Hierarchy::attachToRoot(ElementId cluster) {
 
 bool Hierarchy::canSubdivide(ElementId id) const {
     const HElement& e = elements_[id];
-    return e.isSurface() && e.range.size() > 1;
+    return e.isSurface() && bounds_[id].range.size() > 1;
 }
 
 void Hierarchy::subdivide(ElementId id) {
     if (!elements_[id].isLeaf() || !canSubdivide(id)) return;
     const HElement parent = elements_[id];  // copy: add() may reallocate
+    const IndexRange parentRange = bounds_[id].range;
     // Parametric corners of the four children. Quads: the four sub-squares.
     // Triangles: three corner triangles and the middle one (same winding).
     std::array<std::array<glm::dvec2, 4>, 4> params;
@@ -368,7 +374,6 @@ void Hierarchy::subdivide(ElementId id) {
         c.polygon = parent.polygon;
         c.object = parent.object;
         c.depth = static_cast<std::uint8_t>(parent.depth + 1);
-        c.range = quadtreeChildRange(parent.range, k);
         c.param = params[k];
         c.patch.n = parent.patch.n;
         c.normal = parent.normal;
@@ -381,7 +386,7 @@ void Hierarchy::subdivide(ElementId id) {
         c.anchor = parent.anchor;
         c.anchorLight = parent.anchorLight;
         c.level = parent.level;
-        kids.push_back(add(std::move(c)));
+        kids.push_back(add(std::move(c), ElementBounds{quadtreeChildRange(parentRange, k), Aabb{}}));
     }
     elements_[id].children = kids;
     updateGeometry(id);
@@ -395,6 +400,7 @@ void Hierarchy::removeChildren(ElementId id) {
         stack.pop_back();
         for (ElementId c : elements_[e].children) stack.push_back(c);
         elements_[e] = HElement{};
+        bounds_[e] = ElementBounds{};
         free_.push_back(e);
     }
 }
@@ -414,8 +420,9 @@ void Hierarchy::updateGeometry(ElementId id) {
         for (int i = 0; i < e.patch.n; ++i) e.patch.v[i] = polygonPoint(p, e.param[i]);
         e.normal = p.normal();
         e.area = polygonArea(e.patch);
-        e.box = Aabb{};
-        for (int i = 0; i < e.patch.n; ++i) e.box.extend(e.patch.v[i]);
+        Aabb& box = bounds_[id].box;
+        box = Aabb{};
+        for (int i = 0; i < e.patch.n; ++i) box.extend(e.patch.v[i]);
         e.center = patchCentroid(e.patch);
     }
     for (ElementId c : e.children) updateGeometry(c);
@@ -463,6 +470,7 @@ void Hierarchy::compact() {
         if (v.capacity() - v.size() > slack + v.size() / 4) v.shrink_to_fit();
     };
     shrink(elements_, 0);
+    shrink(bounds_, 0);
     shrink(shapes_, 0);
     tbb::parallel_for(std::size_t(0), elements_.size(), [&](std::size_t i) {
         HElement& e = elements_[i];
@@ -474,7 +482,8 @@ void Hierarchy::compact() {
 }
 
 std::size_t Hierarchy::memoryBytes() const {
-    std::size_t bytes = elements_.capacity() * sizeof(HElement) + free_.capacity() * sizeof(ElementId) +
+    std::size_t bytes = elements_.capacity() * sizeof(HElement) + bounds_.capacity() * sizeof(ElementBounds) +
+                        free_.capacity() * sizeof(ElementId) +
                         shapes_.capacity() * sizeof(ClusterShape) + freeShapes_.capacity() * sizeof(std::uint32_t);
     for (const ClusterShape& s : shapes_) bytes += s.childFacet.capacity();
     for (const HElement& e : elements_)

@@ -31,6 +31,9 @@ public:
     ElementId root() const { return root_; }
     HElement& operator[](ElementId id) { return elements_[id]; }
     const HElement& operator[](ElementId id) const { return elements_[id]; }
+    // An element's index range (sec. 3.2) and box, kept apart (ElementBounds).
+    const IndexRange& range(ElementId id) const { return bounds_[id].range; }
+    const Aabb& box(ElementId id) const { return bounds_[id].box; }
     std::size_t size() const { return elements_.size(); }
     std::size_t liveCount() const { return elements_.size() - free_.size(); }
     double minArea() const { return minArea_; }
@@ -97,7 +100,7 @@ public:
     std::size_t memoryBytes() const;
 
 private:
-    ElementId add(HElement e);
+    ElementId add(HElement e, const ElementBounds& bounds = {});
     void release(ElementId id);  // frees an element and its shape
     // A median-split tree of clusters over `items` (objects or polygons), at
     // most a few leaves per cluster; makeLeaf turns an item into an element.
@@ -114,6 +117,7 @@ private:
 
     const Scene& scene_;  // outlives the hierarchy; polygons move with the dynamic object
     std::vector<HElement> elements_;
+    std::vector<ElementBounds> bounds_;  // parallel to elements_
     std::vector<ElementId> free_;
     std::vector<ClusterShape> shapes_;
     std::vector<std::uint32_t> freeShapes_;

@@ -8,12 +8,13 @@
 #include <tbb/parallel_for.h>
 
 #include "links/FormFactor.h"
+#include "links/SourceOrder.h"
 #include "solve/ClusterTransfer.h"
 
 namespace rad {
 namespace {
 
-double radius(const HElement& e) { return 0.5 * glm::length(e.box.extent()); }
+double radius(const Aabb& box) { return 0.5 * glm::length(box.extent()); }
 
 // Link lists are sets: removal swaps the last entry in (a light can hold
 // thousands of outgoing links; shifting them on every removal would not do).
@@ -26,15 +27,23 @@ void unorderedErase(std::vector<LinkId>& list, LinkId id) {
     list.pop_back();
 }
 
+// A receiver's lists keep their source order (links/SourceOrder.h) when a
+// link leaves them.
+void orderedErase(std::vector<LinkId>& list, LinkId id) {
+    const auto it = std::find(list.begin(), list.end(), id);
+    if (it == list.end()) throw std::logic_error("link " + std::to_string(id) + " is not in the list it is erased from");
+    list.erase(it);
+}
+
 }  // namespace
 
 Refiner::Refiner(Hierarchy& hierarchy, LinkStore& links, const RayCaster& rays, RefineSettings settings)
     : h_(hierarchy), links_(links), rays_(rays), settings_(settings) {}
 
 bool Refiner::touchesMovable(ElementId e) const {
-    const IndexRange& r = h_[e].range;
+    const IndexRange& r = h_.range(e);
     for (ElementId m : h_.movableClusters()) {
-        const IndexRange& mr = h_[m].range;
+        const IndexRange& mr = h_.range(m);
         if (mr.contains(r) || r.contains(mr)) return true;
     }
     return false;
@@ -42,7 +51,7 @@ bool Refiner::touchesMovable(ElementId e) const {
 
 std::size_t Refiner::segments(ElementId s, ElementId r, Segments& out, RayWeights& weights) const {
     const int order = settings_.samplesPerElement >= 4 ? 2 : 1;
-    const SourcePoints ps = sourcePoints(h_, s, h_[r].box, order), pr = sourcePoints(h_, r, h_[s].box, order);
+    const SourcePoints ps = sourcePoints(h_, s, h_.box(r), order), pr = sourcePoints(h_, r, h_.box(s), order);
     std::size_t n = 0;
     double total = 0.0;
     for (int i = 0; i < ps.n; ++i)
@@ -76,8 +85,8 @@ namespace {
 
 // Where a box lies with respect to a surface's plane.
 enum class Side { Front, Behind, Both };
-Side sideOf(const HElement& surface, const Aabb& box) {
-    const double tolerance = 1e-9 * glm::length(box.extent() + surface.box.extent());
+Side sideOf(const HElement& surface, const Aabb& surfaceBox, const Aabb& box) {
+    const double tolerance = 1e-9 * glm::length(box.extent() + surfaceBox.extent());
     bool front = false, behind = false;
     for (int k = 0; k < 8; ++k) {
         const glm::dvec3 corner((k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z);
@@ -95,7 +104,7 @@ bool Refiner::admissible(ElementId s, ElementId r) const {
     const HElement& b = h_[r];
     if (a.isSurface() && b.isSurface()) return true;
     if (s == r) return false;
-    const double reach = radius(a) + radius(b);
+    const double reach = radius(h_.box(s)) + radius(h_.box(r));
     const glm::dvec3 d = b.center - a.center;
     return glm::dot(d, d) > reach * reach * (1.0 + 1e-9);
 }
@@ -104,8 +113,8 @@ bool Refiner::neverCarries(ElementId s, ElementId r) const {
     const HElement& a = h_[s];
     const HElement& b = h_[r];
     // One-sided: a surface sends and receives only in front of itself.
-    if (a.isSurface() && sideOf(a, b.box) == Side::Behind) return true;
-    if (b.isSurface() && sideOf(b, a.box) == Side::Behind) return true;
+    if (a.isSurface() && sideOf(a, h_.box(s), h_.box(r)) == Side::Behind) return true;
+    if (b.isSurface() && sideOf(b, h_.box(r), h_.box(s)) == Side::Behind) return true;
     return a.isSurface() && b.isSurface() && a.polygon == b.polygon;
 }
 
@@ -115,7 +124,7 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
     if (src.isSurface() && rcv.isSurface()) {
         if (src.polygon == rcv.polygon) return {};  // one plane
         // Close pairs need more quadrature points: the integrand varies fast.
-        const double reach = radius(src) + radius(rcv);
+        const double reach = radius(h_.box(s)) + radius(h_.box(r));
         const glm::dvec3 d = rcv.center - src.center;
         const double d2 = glm::dot(d, d);
         const int order = d2 < reach * reach ? 5 : d2 < 4.0 * reach * reach ? 4 : d2 < 16.0 * reach * reach ? 3 : 2;
@@ -130,7 +139,7 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
     // surface receiver: the mean over its Gauss points of the form factor to
     // them. A cluster receiver: the kernel at its centre, which each facet
     // takes times its cosine toward the source.
-    const SourcePoints source = sourcePoints(h_, s, rcv.box);
+    const SourcePoints source = sourcePoints(h_, s, h_.box(r));
     if (!rcv.isSurface()) {
         const double g = pointKernel(source, rcv.center);
         return {g, g, g};
@@ -214,7 +223,7 @@ LinkId Refiner::attachUnseen(const Link& link) {
     const LinkId id = links_.add(link);
     Link& l = links_[id];
     l.gathered = 0.0;  // carries nothing until its rays are cast (activate)
-    h_[link.receiver].links.push_back(id);
+    append(h_[link.receiver].links, link.receiver, id);
     h_[link.source].outLinks.push_back(id);
     return id;
 }
@@ -231,7 +240,7 @@ void Refiner::castPendingRays(const std::vector<LinkId>& ids) {
 LinkId Refiner::attach(const Link& link) {
     const LinkId id = links_.add(link);
     links_[id].passive = true;  // activate() expects a p-link
-    h_[link.receiver].plinks.push_back(id);
+    append(h_[link.receiver].plinks, link.receiver, id);
     h_[link.source].outPlinks.push_back(id);
     activate(id);
     return id;
@@ -240,8 +249,8 @@ LinkId Refiner::attach(const Link& link) {
 void Refiner::activate(LinkId id) {
     Link& l = links_[id];
     HElement& r = h_[l.receiver];
-    unorderedErase(r.plinks, id);
-    r.links.push_back(id);
+    orderedErase(r.plinks, id);
+    append(r.links, l.receiver, id);
     unorderedErase(h_[l.source].outPlinks, id);
     h_[l.source].outLinks.push_back(id);
     l.passive = false;
@@ -254,9 +263,9 @@ void Refiner::deactivate(LinkId id) {
     Link& l = links_[id];
     HElement& r = h_[l.receiver];
     l.gathered = 0.0;
-    unorderedErase(r.links, id);
+    orderedErase(r.links, id);
     unorderedErase(h_[l.source].outLinks, id);
-    r.plinks.push_back(id);
+    append(r.plinks, l.receiver, id);
     h_[l.source].outPlinks.push_back(id);
     l.passive = true;
     markStale(l.receiver);  // eq. 2: what it gathered through this link goes
@@ -266,6 +275,35 @@ void Refiner::regather(LinkId id) {
     Link& l = links_[id];
     l.gathered = l.formFactor();
     markStale(l.receiver);
+}
+
+void Refiner::append(std::vector<LinkId>& list, ElementId receiver, LinkId id) {
+    list.push_back(id);
+    if (h_[receiver].unordered) return;
+    h_[receiver].unordered = true;
+    unordered_.push_back(receiver);
+}
+
+void Refiner::sortLinkLists() {
+    std::sort(unordered_.begin(), unordered_.end());  // each once: sorted on all cores
+    unordered_.erase(std::unique(unordered_.begin(), unordered_.end()), unordered_.end());
+    tbb::parallel_for(std::size_t(0), unordered_.size(), [&](std::size_t i) {
+        HElement& e = h_[unordered_[i]];
+        if (!e.unordered) return;  // freed since
+        sortBySource(h_, links_, e.links);
+        sortBySource(h_, links_, e.plinks);
+        e.unordered = false;
+    });
+    unordered_.clear();
+}
+
+void Refiner::sortAllLinkLists() {
+    unordered_.clear();
+    for (ElementId e = 0; e < h_.size(); ++e) {
+        h_[e].unordered = true;
+        unordered_.push_back(e);
+    }
+    sortLinkLists();
 }
 
 void Refiner::markStale(ElementId receiver) {
@@ -310,7 +348,7 @@ std::vector<ElementId> Refiner::takeDirty() {
 
 void Refiner::remove(LinkId id) {
     if (!links_[id].passive) deactivate(id);
-    unorderedErase(h_[links_[id].receiver].plinks, id);
+    orderedErase(h_[links_[id].receiver].plinks, id);
     unorderedErase(h_[links_[id].source].outPlinks, id);
     links_.remove(id);
 }

@@ -61,6 +61,12 @@ public:
     void regather(LinkId id);         // its form factor changed
     void remove(LinkId id);           // active or passive, gone
 
+    // Puts the link lists that refinement appended to back in source order
+    // (links/SourceOrder.h); every list, after the index ranges were
+    // numbered again (Hierarchy::attachToRoot).
+    void sortLinkLists();
+    void sortAllLinkLists();
+
     // Elements whose own irradiance changed since the last takeDirty().
     void markDirty(ElementId e);
     // Sums again the irradiance of the elements whose links changed, and
@@ -135,6 +141,8 @@ private:
     bool touchesMovable(ElementId e) const;
     std::vector<std::pair<ElementId, ElementId>> childPairs(const Link& link);
     void markStale(ElementId receiver);
+    // Appends to a receiver's list, which is then out of source order.
+    void append(std::vector<LinkId>& list, ElementId receiver, LinkId id);
 
     Hierarchy& h_;
     LinkStore& links_;
@@ -142,6 +150,7 @@ private:
     RefineSettings settings_;
     bool capReached_ = false;
     std::vector<ElementId> dirty_;
+    std::vector<ElementId> unordered_;  // elements whose lists were appended to
 };
 
 }  // namespace rad

@@ -33,7 +33,7 @@ void LineSpaceUpdate::recompute(LinkId id, bool full) {
     // has a cluster end and is refined (measured in office: 3,843 of the
     // 4,365 per frame), and its rays were half the link recomputes.
     const auto lazy = [&] { return l.passive && refiner_.refinesAtAnyVisibility(l); };
-    if (full || layersChanged_ || moved_.nestedWith(h_[l.source].range) || moved_.nestedWith(h_[l.receiver].range)) {
+    if (full || layersChanged_ || moved_.nestedWith(h_.range(l.source)) || moved_.nestedWith(h_.range(l.receiver))) {
         // An end moved: its form factor and both visibility parts change.
         const Link fresh = refiner_.computeUnoccluded(l.source, l.receiver);
         l.unoccluded = fresh.unoccluded;
@@ -205,7 +205,7 @@ std::size_t LineSpaceUpdate::catchUp(std::size_t budget, FrameStats& stats) {
 
 void LineSpaceUpdate::reinstate(LinkId id) {
     const ElementId he = links_[id].receiver;
-    const IndexRange sources = h_[links_[id].source].range;
+    const IndexRange sources = h_.range(links_[id].source);
     // Sec. 4.2: its line-space children go, and the subdivision they leave
     // without links.
     removeLineSpaceChildren(he, sources, id);
@@ -226,9 +226,9 @@ void LineSpaceUpdate::removeLineSpaceChildren(ElementId e, const IndexRange& sou
     doomed_.clear();
     bool refined = e == links_[keep].receiver;
     for (LinkId id : h_[e].links)
-        if (sources.contains(h_[links_[id].source].range.first)) doomed_.push_back(id);
+        if (sources.contains(h_.range(links_[id].source).first)) doomed_.push_back(id);
     for (LinkId id : h_[e].plinks)
-        if (id != keep && sources.contains(h_[links_[id].source].range.first)) {
+        if (id != keep && sources.contains(h_.range(links_[id].source).first)) {
             doomed_.push_back(id);
             refined = true;
         }

@@ -15,8 +15,8 @@ bool holds(const std::vector<ElementId>& set, ElementId e) { return std::find(se
 void unlinkSubtree(Hierarchy& h, LinkStore& links, Refiner& refiner, ElementId cluster,
                    const std::vector<ElementId>& emptied, std::vector<LinkId>& atAncestors,
                    const std::vector<ElementId>& ancestors, ReinsertionStats& stats) {
-    const IndexRange object = h[cluster].range;
-    const auto doomedEnd = [&](ElementId e) { return object.contains(h[e].range) || holds(emptied, e); };
+    const IndexRange object = h.range(cluster);
+    const auto doomedEnd = [&](ElementId e) { return object.contains(h.range(e)) || holds(emptied, e); };
     std::vector<LinkId> doomed;
     // Every link is on its receiver's lists, active or passive.
     for (ElementId e = 0; e < h.size(); ++e)
@@ -113,6 +113,7 @@ ReinsertionStats reinsertUnderRoot(Hierarchy& h, LinkStore& links, Refiner& refi
     std::vector<LinkId> atAncestors;
     if (linked) unlinkSubtree(h, links, refiner, cluster, emptied, atAncestors, ancestors, stats);
     h.attachToRoot(cluster);
+    refiner.sortAllLinkLists();  // the index ranges were numbered again
     if (!linked) return stats;
 
     recomputeAtAncestors(links, refiner, atAncestors);

@@ -11,6 +11,8 @@
 #include <tbb/parallel_for.h>
 
 #include "geometry/Shaft.h"
+#include "links/SourceOrder.h"
+#include "refine/Refiner.h"
 #include "update/LineSpaceUpdate.h"
 
 namespace rad {
@@ -19,9 +21,9 @@ bool LineSpaceUpdate::affectedByMotion(ElementId s, ElementId r, std::size_t& te
     // Both ends on the object: a rigid motion changes neither the form factor
     // nor the object's occlusion of its own parts; only static geometry in
     // the object (the obstacles) can come between them.
-    if (!layersChanged_ && moved_.contains(h_[s].range) && moved_.contains(h_[r].range)) {
-        const Aabb& a = h_[s].box;
-        const Aabb& b = h_[r].box;
+    if (!layersChanged_ && moved_.contains(h_.range(s)) && moved_.contains(h_.range(r))) {
+        const Aabb& a = h_.box(s);
+        const Aabb& b = h_.box(r);
         const auto near = [&](const Aabb& o) { return Shaft::hullMeets(a, b, o); };
         if (obstacles_.empty()) return false;
         ++tests;
@@ -30,26 +32,27 @@ bool LineSpaceUpdate::affectedByMotion(ElementId s, ElementId r, std::size_t& te
         return std::any_of(obstacles_.begin(), obstacles_.end(),
                            [&](const Aabb& o) { return near(o) && shaft.intersects(o); });
     }
-    if (moved_.nestedWith(h_[s].range) || moved_.nestedWith(h_[r].range)) return true;
+    if (moved_.nestedWith(h_.range(s)) || moved_.nestedWith(h_.range(r))) return true;
     ++tests;
     // The shaft is built only when tested (storing one per link would cost
     // 256 bytes each), and only when the boxes' hull meets the object: most
     // tested links are far from it.
-    const Aabb& a = h_[s].box;
-    const Aabb& b = h_[r].box;
+    const Aabb& a = h_.box(s);
+    const Aabb& b = h_.box(r);
     if (!Shaft::hullMeets(a, b, oldBox_) && !Shaft::hullMeets(a, b, newBox_)) return false;
     const Shaft shaft(a, b);
     return shaft.intersects(oldBox_) || shaft.intersects(newBox_);
 }
 
 bool LineSpaceUpdate::cutBefore(ElementId s, ElementId r) const {
-    const Aabb& a = h_[s].box;
-    const Aabb& b = h_[r].box;
+    const Aabb& a = h_.box(s);
+    const Aabb& b = h_.box(r);
     return Shaft::hullMeets(a, b, oldBox_) && Shaft(a, b).intersects(oldBox_);
 }
 
 void LineSpaceUpdate::findModifiedLinks() {
-    visits_.assign(1, Visit{h_.root(), h_[h_.root()].range, {}, {}, {}, 0});
+    refiner_.sortLinkLists();  // what the last frame appended (links/SourceOrder.h)
+    visits_.assign(1, Visit{h_.root(), h_.range(h_.root()), {}, {}, {}, 0});
     // Level by level, each level's visits on all cores: a visit only reads,
     // and stamps its own candidates (the visits of a level have disjoint
     // subtrees, or disjoint source ranges on the same node).
@@ -91,27 +94,21 @@ void LineSpaceUpdate::findModifiedLinks() {
 
 std::size_t LineSpaceUpdate::visitNode(Visit& v, std::vector<std::pair<ElementId, IndexRange>>& children) {
     std::size_t tests = 0;
-    for (LinkId pl : h_[v.he].plinks) {
-        const ElementId q = links_[pl].source;  // the "source" node
-        if (v.ind.contains(h_[q].range) && affectedByMotion(q, v.he, tests)) v.affected.push_back(pl);
-    }
-    for (LinkId id : h_[v.he].links) {
-        const ElementId s = links_[id].source;
-        if (linkStamp_[id] == frame_ || !v.ind.contains(h_[s].range) || !affectedByMotion(s, v.he, tests)) continue;
+    // The links from the visit's range: one run of each list, in source order.
+    for (LinkId pl : linksFrom(h_, links_, h_[v.he].plinks, v.ind))
+        if (affectedByMotion(links_[pl].source, v.he, tests)) v.affected.push_back(pl);
+    for (LinkId id : linksFrom(h_, links_, h_[v.he].links, v.ind)) {
+        if (linkStamp_[id] == frame_ || !affectedByMotion(links_[id].source, v.he, tests)) continue;
         linkStamp_[id] = frame_;  // older than the frame: within the stamps
         v.candidates.push_back(id);
     }
     // Descend once per maximal range: a p-link refined by splitting its source
     // leaves p-links from q's children on he itself, whose ranges lie inside
     // q's; visiting the children for each of them again would repeat the same
-    // traversal.
-    std::sort(v.affected.begin(), v.affected.end(), [&](LinkId a, LinkId b) {
-        const IndexRange& ra = h_[links_[a].source].range;
-        const IndexRange& rb = h_[links_[b].source].range;
-        return ra.first < rb.first || (ra.first == rb.first && ra.last > rb.last);
-    });
+    // traversal. (The affected p-links are in source order: a range comes
+    // before the ranges inside it.)
     for (LinkId pl : v.affected) {
-        const IndexRange& r = h_[links_[pl].source].range;
+        const IndexRange& r = h_.range(links_[pl].source);
         if (v.groups.empty() || !v.groups.back().range.contains(r)) v.groups.push_back(Group{r, {}, {}, 0});
         v.groups.back().plinks.push_back(pl);
     }
@@ -123,9 +120,7 @@ std::size_t LineSpaceUpdate::visitNode(Visit& v, std::vector<std::pair<ElementId
 }
 
 bool LineSpaceUpdate::hasLinkFrom(ElementId e, const IndexRange& sources) const {
-    const auto from = [&](LinkId id) { return sources.contains(h_[links_[id].source].range.first); };
-    return std::any_of(h_[e].links.begin(), h_[e].links.end(), from) ||
-           std::any_of(h_[e].plinks.begin(), h_[e].plinks.end(), from);
+    return !linksFrom(h_, links_, h_[e].links, sources).empty() || !linksFrom(h_, links_, h_[e].plinks, sources).empty();
 }
 
 }  // namespace rad

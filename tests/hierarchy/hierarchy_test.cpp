@@ -24,20 +24,22 @@ std::size_t checkSubtree(const Hierarchy& h, ElementId id, std::string& problem)
     const HElement& e = h[id];
     std::size_t count = 1;
     double area = 0.0;
-    std::uint64_t next = e.range.first + 1;
+    const IndexRange range = h.range(id);
+    std::uint64_t next = range.first + 1;
     for (std::size_t k = 0; k < e.children.size(); ++k) {
         const ElementId c = e.children[k];
         const HElement& child = h[c];
+        const IndexRange childRange = h.range(c);
         if (child.parent != id) problem = "element " + std::to_string(c) + ": wrong parent";
-        if (!e.range.contains(child.range)) problem = "element " + std::to_string(c) + ": range outside its parent's";
-        if (child.range.first < next) problem = "element " + std::to_string(c) + ": range overlaps a sibling's";
-        next = child.range.last + 1;
+        if (!range.contains(childRange)) problem = "element " + std::to_string(c) + ": range outside its parent's";
+        if (childRange.first < next) problem = "element " + std::to_string(c) + ": range overlaps a sibling's";
+        next = childRange.last + 1;
         if (e.isSurface()) {
-            const IndexRange expected = quadtreeChildRange(e.range, static_cast<int>(k));
-            if (child.range.first != expected.first || child.range.last != expected.last)
+            const IndexRange expected = quadtreeChildRange(range, static_cast<int>(k));
+            if (childRange.first != expected.first || childRange.last != expected.last)
                 problem = "element " + std::to_string(c) + ": not its quadtree range";
         } else {
-            if (!holds(e.box, child.box))
+            if (!holds(h.box(id), h.box(c)))
                 problem = "cluster " + std::to_string(id) + ": box does not hold child " + std::to_string(c);
             area += child.area;
         }
@@ -61,7 +63,7 @@ TEST(Hierarchy, AttachToRootKeepsTheTreeWellFormed) {
     h.subdivide(h[h.polygonElement(scene.objects[desk].firstPolygon)].children[2]);
     h.subdivide(h.polygonElement(0));
     const std::size_t elements = h.liveCount();
-    const std::uint64_t indices = h[h.root()].range.size();
+    const std::uint64_t indices = h.range(h.root()).size();
     const std::size_t movableBefore = h.movableClusters().size();
     EXPECT_TRUE(h.emptiedBy(cluster).empty());
 
@@ -73,7 +75,7 @@ TEST(Hierarchy, AttachToRootKeepsTheTreeWellFormed) {
     EXPECT_EQ(checkSubtree(h, h.root(), problem), elements);
     EXPECT_TRUE(problem.empty()) << problem;
     EXPECT_EQ(h.liveCount(), elements);
-    EXPECT_EQ(h[h.root()].range.size(), indices);  // the same elements, numbered again
+    EXPECT_EQ(h.range(h.root()).size(), indices);  // the same elements, numbered again
     // The desk's path of elements is found from the root.
     const auto path = h.pathTo(scene.objects[desk].firstPolygon, glm::dvec2(0.75, 0.75));
     ASSERT_GE(path.size(), 4u);

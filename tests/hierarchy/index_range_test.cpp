@@ -65,7 +65,7 @@ TEST(Hierarchy, RangesMatchTheTreeAfterSubdivision) {
     for (ElementId a : all)
         for (ElementId q : all)
             if (a != q) {
-                EXPECT_EQ(h[a].range.contains(h[q].range.first), isBelow(q, a)) << a << " " << q;
+                EXPECT_EQ(h.range(a).contains(h.range(q).first), isBelow(q, a)) << a << " " << q;
             }
     // Subdivided children tile their parent.
     double area = 0.0;
