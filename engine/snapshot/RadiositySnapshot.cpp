@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 namespace rad {
 namespace {
@@ -11,19 +13,16 @@ namespace {
 // A point of the dyadic lattice of one input polygon's quadtree.
 struct LatticePoint {
     std::int64_t i, j;
-    bool operator==(const LatticePoint&) const = default;
-};
-struct LatticeHash {
-    std::size_t operator()(const LatticePoint& p) const {
-        return std::hash<std::int64_t>()(p.i * 0x9E3779B97F4A7C15LL ^ p.j);
-    }
+    auto operator<=>(const LatticePoint&) const = default;
 };
 
-struct VertexSum {
-    glm::dvec3 weighted{0.0};
-    double weight = 0.0;
+// A mesh vertex of one polygon: the leaves' corners at one lattice point.
+struct Vertex {
+    LatticePoint p;
+    glm::dvec3 weighted{0.0};  // sum of leaf area times B
+    double weight = 0.0;       // sum of leaf area
     glm::dvec3 position{0.0};
-    std::uint32_t index = 0;
+    glm::dvec3 value{0.0};     // the B it shows
 };
 
 void collectLeaves(const Hierarchy& h, ElementId e, std::vector<ElementId>& out) {
@@ -34,8 +33,17 @@ void collectLeaves(const Hierarchy& h, ElementId e, std::vector<ElementId>& out)
     for (ElementId c : h[e].children) collectLeaves(h, c, out);
 }
 
-void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vector<double>& weights) {
+// What addPolygon works in, reused from polygon to polygon.
+struct Scratch {
     std::vector<ElementId> leaves;
+    std::vector<Vertex> corners, vertices;
+};
+
+// Sorted vectors, not hash maps: a polygon has a few vertices on average,
+// and building a map per polygon per frame was most of the snapshot.
+void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vector<double>& weights, Scratch& scratch) {
+    std::vector<ElementId>& leaves = scratch.leaves;
+    leaves.clear();
     collectLeaves(h, top, leaves);
     int maxDepth = 0;
     for (ElementId l : leaves) maxDepth = std::max<int>(maxDepth, h[l].depth);
@@ -44,18 +52,31 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
         return LatticePoint{std::llround(uv.x * scale), std::llround(uv.y * scale)};
     };
 
-    std::unordered_map<LatticePoint, VertexSum, LatticeHash> vertices;
+    std::vector<Vertex>& corners = scratch.corners;
+    corners.clear();
     for (ElementId l : leaves) {
         const HElement& e = h[l];
-        for (int k = 0; k < e.patch.n; ++k) {
-            VertexSum& v = vertices[lattice(e.param[k])];
-            v.weighted += e.area * e.radiosity;
-            v.weight += e.area;
-            v.position = e.patch.v[k];
-        }
+        for (int k = 0; k < e.patch.n; ++k)
+            corners.push_back({lattice(e.param[k]), e.area * e.radiosity, e.area, e.patch.v[k], {}});
     }
-    std::unordered_map<LatticePoint, glm::dvec3, LatticeHash> value;
-    for (const auto& [p, v] : vertices) value[p] = v.weight > 0.0 ? v.weighted / v.weight : glm::dvec3(0.0);
+    std::sort(corners.begin(), corners.end(), [](const Vertex& a, const Vertex& b) { return a.p < b.p; });
+    std::vector<Vertex>& vertices = scratch.vertices;  // one per lattice point, in lattice order
+    vertices.clear();
+    for (const Vertex& c : corners) {
+        if (vertices.empty() || vertices.back().p != c.p) {
+            vertices.push_back(c);
+            continue;
+        }
+        vertices.back().weighted += c.weighted;
+        vertices.back().weight += c.weight;
+        vertices.back().position = c.position;
+    }
+    for (Vertex& v : vertices) v.value = v.weight > 0.0 ? v.weighted / v.weight : glm::dvec3(0.0);
+    const auto find = [&](const LatticePoint& p) {
+        const auto it = std::lower_bound(vertices.begin(), vertices.end(), p,
+                                         [](const Vertex& v, const LatticePoint& q) { return v.p < q; });
+        return it != vertices.end() && it->p == p ? it : vertices.end();
+    };
 
     // Coarse leaves first: their edge ends are final when their T-vertices are set.
     std::sort(leaves.begin(), leaves.end(), [&](ElementId a, ElementId b) { return h[a].depth < h[b].depth; });
@@ -64,70 +85,61 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
         for (int k = 0; k < e.patch.n; ++k) {
             const LatticePoint a = lattice(e.param[k]), b = lattice(e.param[(k + 1) % e.patch.n]);
             const std::int64_t n = std::max(std::llabs(b.i - a.i), std::llabs(b.j - a.j));
-            const glm::dvec3 va = value[a], vb = value[b];
+            if (n < 2) continue;
+            const glm::dvec3 va = find(a)->value, vb = find(b)->value;
             for (std::int64_t s = 1; s < n; ++s) {
-                const LatticePoint p{a.i + (b.i - a.i) / n * s, a.j + (b.j - a.j) / n * s};
-                const auto it = value.find(p);
-                if (it != value.end()) it->second = glm::mix(va, vb, double(s) / double(n));
+                const auto it = find(LatticePoint{a.i + (b.i - a.i) / n * s, a.j + (b.j - a.j) / n * s});
+                if (it != vertices.end()) it->value = glm::mix(va, vb, double(s) / double(n));
             }
         }
     }
 
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
     const glm::vec3 normal(h[top].normal);
-    for (auto& [p, v] : vertices) {
-        v.index = static_cast<std::uint32_t>(mesh.positions.size());
+    for (const Vertex& v : vertices) {
         mesh.positions.emplace_back(v.position);
         mesh.normals.push_back(normal);
-        mesh.colors.emplace_back(value[p]);
+        mesh.colors.emplace_back(v.value);
         weights.push_back(v.weight);
     }
     for (ElementId l : leaves) {
         const HElement& e = h[l];
         std::array<std::uint32_t, 4> idx{};
-        for (int k = 0; k < e.patch.n; ++k) idx[k] = vertices[lattice(e.param[k])].index;
+        for (int k = 0; k < e.patch.n; ++k)
+            idx[k] = base + static_cast<std::uint32_t>(find(lattice(e.param[k])) - vertices.begin());
         for (int k = 1; k + 1 < e.patch.n; ++k) mesh.indices.insert(mesh.indices.end(), {idx[0], idx[k], idx[k + 1]});
     }
 }
 
 // Input polygons that meet edge to edge in one plane (a tiled wall) share
-// their vertices' values, so the tiling does not show as steps.
+// their vertices' values, so the tiling does not show as steps. Vertices are
+// matched by sorting their keys (on all cores), not by a hash map.
 void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vector<double>& weights) {
     const Aabb box = scene.bounds();
     const double cell = std::max(1e-300, 1e-6 * glm::length(box.extent()));
     struct Key {
         std::int64_t x, y, z, nx, ny, nz;
-        bool operator==(const Key&) const = default;
+        auto operator<=>(const Key&) const = default;
     };
-    struct KeyHash {
-        std::size_t operator()(const Key& k) const {
-            std::size_t h = 0;
-            for (std::int64_t v : {k.x, k.y, k.z, k.nx, k.ny, k.nz}) h = h * 0x100000001B3ULL ^ std::hash<std::int64_t>()(v);
-            return h;
-        }
-    };
-    auto keyOf = [&](std::size_t i) {
-        const glm::dvec3 p = (glm::dvec3(mesh.positions[i]) - box.lo) / cell;
-        const glm::dvec3 n = glm::dvec3(mesh.normals[i]) * 1e3;
-        return Key{std::llround(p.x), std::llround(p.y), std::llround(p.z),
-                   std::llround(n.x), std::llround(n.y), std::llround(n.z)};
-    };
-    // Each vertex hashed once: its slot among the distinct keys.
     const std::size_t n = mesh.positions.size();
-    std::unordered_map<Key, std::uint32_t, KeyHash> slotOf;
-    slotOf.reserve(n);
-    std::vector<std::uint32_t> slot(n);
-    std::vector<std::pair<glm::dvec3, double>> sums;
-    sums.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto [it, added] = slotOf.try_emplace(keyOf(i), std::uint32_t(sums.size()));
-        if (added) sums.emplace_back(glm::dvec3(0.0), 0.0);
-        slot[i] = it->second;
-        sums[it->second].first += weights[i] * glm::dvec3(mesh.colors[i]);
-        sums[it->second].second += weights[i];
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto& [sum, w] = sums[slot[i]];
-        if (w > 0.0) mesh.colors[i] = glm::vec3(sum / w);
+    std::vector<std::pair<Key, std::uint32_t>> keyed(n);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+        const glm::dvec3 p = (glm::dvec3(mesh.positions[i]) - box.lo) / cell;
+        const glm::dvec3 nrm = glm::dvec3(mesh.normals[i]) * 1e3;
+        keyed[i] = {Key{std::llround(p.x), std::llround(p.y), std::llround(p.z), std::llround(nrm.x), std::llround(nrm.y),
+                        std::llround(nrm.z)},
+                    static_cast<std::uint32_t>(i)};
+    });
+    tbb::parallel_sort(keyed.begin(), keyed.end());
+    for (std::size_t a = 0, b = 0; a < n; a = b) {
+        glm::dvec3 sum(0.0);
+        double w = 0.0;
+        for (b = a; b < n && keyed[b].first == keyed[a].first; ++b) {
+            sum += weights[keyed[b].second] * glm::dvec3(mesh.colors[keyed[b].second]);
+            w += weights[keyed[b].second];
+        }
+        if (w > 0.0 && b - a > 1)
+            for (std::size_t k = a; k < b; ++k) mesh.colors[keyed[k].second] = glm::vec3(sum / w);
     }
 }
 
@@ -144,11 +156,29 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
     for (std::vector<glm::vec3>* v : {&mesh.positions, &mesh.normals, &mesh.colors, &mesh.linePositions, &mesh.lineColors})
         v->clear();
     mesh.indices.clear();
-    std::vector<double> weights;  // per vertex: the leaf area around it
+    // Polygons are meshed independently: chunks of them on all cores, each
+    // into a mesh of its own, joined in polygon order (the same mesh as one
+    // core makes).
+    const std::size_t polygons = scene.polygons.size();
+    const std::size_t chunks = std::min<std::size_t>(polygons, 64);
+    std::vector<MeshSnapshot> parts(chunks);
+    std::vector<std::vector<double>> partWeights(chunks);  // per vertex: the leaf area around it
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+        Scratch scratch;
+        for (std::size_t p = c * polygons / chunks; p < (c + 1) * polygons / chunks; ++p) {
+            const ElementId top = hierarchy.polygonElement(static_cast<std::uint32_t>(p));
+            if (top != kNone) addPolygon(hierarchy, top, parts[c], partWeights[c], scratch);
+        }
+    });
+    std::vector<double> weights;
     weights.reserve(mesh.positions.capacity());
-    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
-        const ElementId top = hierarchy.polygonElement(p);
-        if (top != kNone) addPolygon(hierarchy, top, mesh, weights);
+    for (std::size_t c = 0; c < chunks; ++c) {
+        const auto offset = static_cast<std::uint32_t>(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), parts[c].positions.begin(), parts[c].positions.end());
+        mesh.normals.insert(mesh.normals.end(), parts[c].normals.begin(), parts[c].normals.end());
+        mesh.colors.insert(mesh.colors.end(), parts[c].colors.begin(), parts[c].colors.end());
+        weights.insert(weights.end(), partWeights[c].begin(), partWeights[c].end());
+        for (std::uint32_t i : parts[c].indices) mesh.indices.push_back(i + offset);
     }
     smoothAcrossPolygons(scene, mesh, weights);
 }
