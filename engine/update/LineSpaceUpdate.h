@@ -99,7 +99,6 @@ private:
     // Recomputes up to `budget` stale links at the current position; returns
     // how many.
     std::size_t catchUp(std::size_t budget, FrameStats& stats);
-    bool hasLinkFrom(ElementId e, const IndexRange& sources) const;
     // Counts its shaft tests in `tests`.
     bool affectedByMotion(ElementId s, ElementId r, std::size_t& tests) const;
     // Whether the object's old box cut the shaft of s -> r.

@@ -112,15 +112,12 @@ std::size_t LineSpaceUpdate::visitNode(Visit& v, std::vector<std::pair<ElementId
         if (v.groups.empty() || !v.groups.back().range.contains(r)) v.groups.push_back(Group{r, {}, {}, 0});
         v.groups.back().plinks.push_back(pl);
     }
+    // Each group goes on below every child: a child with no link from the
+    // group's range finds nothing there (one binary search, which a test for
+    // links from the range before descending would repeat).
     for (const Group& g : v.groups)
-        for (ElementId c : h_[v.he].children)
-            // No link from the range on c means no line-space child of it below c.
-            if (hasLinkFrom(c, g.range)) children.emplace_back(c, g.range);
+        for (ElementId c : h_[v.he].children) children.emplace_back(c, g.range);
     return tests;
-}
-
-bool LineSpaceUpdate::hasLinkFrom(ElementId e, const IndexRange& sources) const {
-    return !linksFrom(h_, links_, h_[e].links, sources).empty() || !linksFrom(h_, links_, h_[e].plinks, sources).empty();
 }
 
 }  // namespace rad
