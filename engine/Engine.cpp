@@ -102,12 +102,13 @@ struct Engine::State {
     // part of the frame's time. Valid until the solution changes again.
     void buildMesh(FrameStats& f) {
         const auto start = std::chrono::steady_clock::now();
-        makeRadiositySnapshot(scene, hierarchy, mesh);
+        makeRadiositySnapshot(scene, hierarchy, mesh, meshParts);
         meshValid = true;
         f.snapshotSeconds = secondsSince(start);
         f.totalSeconds += f.snapshotSeconds;
     }
     MeshSnapshot mesh;
+    SnapshotCache meshParts;
     bool meshValid = false;
 
     std::optional<std::uint32_t> dynamic;

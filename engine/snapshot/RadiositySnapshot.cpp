@@ -1,9 +1,11 @@
 #include "snapshot/RadiositySnapshot.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -143,42 +145,74 @@ void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vec
     }
 }
 
+// A 64-bit hash of what a polygon's mesh is made from: its leaves (which,
+// and how deep), their corners in space and their radiosity. Any change to
+// one of them re-meshes the polygon. Word by word, with a multiply-xorshift
+// mix: it runs over every leaf of the scene each frame.
+std::uint64_t polygonSignature(const Hierarchy& h, ElementId top, std::vector<ElementId>& leaves) {
+    leaves.clear();
+    collectLeaves(h, top, leaves);
+    std::uint64_t hash = 0x9E3779B97F4A7C15ULL;
+    const auto add = [&](std::uint64_t word) {
+        hash = (hash ^ word) * 0xBF58476D1CE4E5B9ULL;
+        hash ^= hash >> 31;
+    };
+    const auto addVector = [&](const glm::dvec3& v) {
+        for (int k = 0; k < 3; ++k) add(std::bit_cast<std::uint64_t>(v[k]));
+    };
+    for (ElementId l : leaves) {
+        const HElement& e = h[l];
+        add(std::uint64_t(l) << 8 | e.depth);
+        for (int k = 0; k < e.patch.n; ++k) addVector(e.patch.v[k]);
+        addVector(e.radiosity);
+    }
+    addVector(h[top].normal);
+    return hash;
+}
+
 }  // namespace
 
 MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy) {
     MeshSnapshot mesh;
-    makeRadiositySnapshot(scene, hierarchy, mesh);
+    SnapshotCache cache;
+    makeRadiositySnapshot(scene, hierarchy, mesh, cache);
     return mesh;
 }
 
-void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh) {
+void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh, SnapshotCache& cache) {
     // Cleared, not freed: a frame's mesh reuses the last one's memory.
     for (std::vector<glm::vec3>* v : {&mesh.positions, &mesh.normals, &mesh.colors, &mesh.linePositions, &mesh.lineColors})
         v->clear();
     mesh.indices.clear();
-    // Polygons are meshed independently: chunks of them on all cores, each
-    // into a mesh of its own, joined in polygon order (the same mesh as one
-    // core makes).
+    // Polygons are meshed independently, on all cores; a polygon whose
+    // signature is unchanged keeps its part. The parts are joined in polygon
+    // order (the same mesh as one core makes from scratch).
     const std::size_t polygons = scene.polygons.size();
-    const std::size_t chunks = std::min<std::size_t>(polygons, 64);
-    std::vector<MeshSnapshot> parts(chunks);
-    std::vector<std::vector<double>> partWeights(chunks);  // per vertex: the leaf area around it
-    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    cache.parts.resize(polygons);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polygons, 16), [&](const tbb::blocked_range<std::size_t>& r) {
         Scratch scratch;
-        for (std::size_t p = c * polygons / chunks; p < (c + 1) * polygons / chunks; ++p) {
+        for (std::size_t p = r.begin(); p < r.end(); ++p) {
+            SnapshotCache::Part& part = cache.parts[p];
             const ElementId top = hierarchy.polygonElement(static_cast<std::uint32_t>(p));
-            if (top != kNone) addPolygon(hierarchy, top, parts[c], partWeights[c], scratch);
+            const std::uint64_t signature = top == kNone ? 0 : polygonSignature(hierarchy, top, scratch.leaves);
+            if (part.valid && part.signature == signature) continue;
+            for (std::vector<glm::vec3>* v : {&part.mesh.positions, &part.mesh.normals, &part.mesh.colors}) v->clear();
+            part.mesh.indices.clear();
+            part.weights.clear();
+            if (top != kNone) addPolygon(hierarchy, top, part.mesh, part.weights, scratch);
+            part.signature = signature;
+            part.valid = true;
         }
     });
     std::vector<double> weights;
     weights.reserve(mesh.positions.capacity());
-    for (std::size_t c = 0; c < chunks; ++c) {
+    for (const SnapshotCache::Part& part : cache.parts) {
         const auto offset = static_cast<std::uint32_t>(mesh.positions.size());
-        mesh.positions.insert(mesh.positions.end(), parts[c].positions.begin(), parts[c].positions.end());
-        mesh.normals.insert(mesh.normals.end(), parts[c].normals.begin(), parts[c].normals.end());
-        mesh.colors.insert(mesh.colors.end(), parts[c].colors.begin(), parts[c].colors.end());
-        weights.insert(weights.end(), partWeights[c].begin(), partWeights[c].end());
-        for (std::uint32_t i : parts[c].indices) mesh.indices.push_back(i + offset);
+        mesh.positions.insert(mesh.positions.end(), part.mesh.positions.begin(), part.mesh.positions.end());
+        mesh.normals.insert(mesh.normals.end(), part.mesh.normals.begin(), part.mesh.normals.end());
+        mesh.colors.insert(mesh.colors.end(), part.mesh.colors.begin(), part.mesh.colors.end());
+        weights.insert(weights.end(), part.weights.begin(), part.weights.end());
+        for (std::uint32_t i : part.mesh.indices) mesh.indices.push_back(i + offset);
     }
     smoothAcrossPolygons(scene, mesh, weights);
 }

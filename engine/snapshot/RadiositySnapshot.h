@@ -12,7 +12,22 @@ namespace rad {
 // interpolated along that edge instead, so that shading has no cracks or
 // jumps where neighbouring leaves differ in depth.
 MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy);
-// The same into `mesh`, reusing its memory.
-void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh);
+
+// Each polygon's part of the mesh as last built, with a signature of what it
+// was built from (its leaves, their corners and radiosity): a frame re-meshes
+// only the polygons whose signature changed. A moved chair or one lit
+// differently re-meshes; the rest of the room is copied.
+struct SnapshotCache {
+    struct Part {
+        std::uint64_t signature = 0;
+        bool valid = false;
+        MeshSnapshot mesh;            // positions, normals, colors; indices from 0
+        std::vector<double> weights;  // per vertex: the leaf area around it
+    };
+    std::vector<Part> parts;  // per input polygon
+};
+
+// The same into `mesh`, reusing its memory and the parts in `cache`.
+void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh, SnapshotCache& cache);
 
 }  // namespace rad

@@ -52,5 +52,43 @@ TEST(RadiositySnapshot, TVerticesTakeTheValueAlongTheCoarseEdge) {
     EXPECT_NEAR(area, 1.0, 1e-6);
 }
 
+// A frame re-meshes only the polygons whose leaves changed (SnapshotCache):
+// after radiosity changes, a subdivision, a removal and a moved polygon, the
+// cached mesh is the mesh made from scratch, vertex for vertex.
+TEST(RadiositySnapshot, CachedPartsGiveTheMeshMadeFromScratch) {
+    Scene s = test::roomWithBlock();
+    Hierarchy h(s, 1e-3);
+    double value = 0.1;
+    const auto light = [&](ElementId e) {
+        value += 0.01;
+        h[e].radiosity = glm::dvec3(value, 0.5 * value, 0.25);
+    };
+    for (std::uint32_t p = 0; p < h.polygonCount(); ++p) light(h.polygonElement(p));
+    SnapshotCache cache;
+    MeshSnapshot cached;
+    const auto expectSame = [&](const char* after) {
+        makeRadiositySnapshot(s, h, cached, cache);
+        const MeshSnapshot fresh = makeRadiositySnapshot(s, h);
+        ASSERT_EQ(cached.positions, fresh.positions) << after;
+        ASSERT_EQ(cached.normals, fresh.normals) << after;
+        ASSERT_EQ(cached.colors, fresh.colors) << after;
+        ASSERT_EQ(cached.indices, fresh.indices) << after;
+    };
+    expectSame("the first build");
+    const ElementId wall = h.polygonElement(0);
+    h.subdivide(wall);
+    for (ElementId c : h[wall].children) light(c);
+    expectSame("a subdivision");
+    light(h[wall].children[2]);
+    expectSame("a leaf's radiosity changed");
+    h.removeChildren(wall);
+    expectSame("the children removed");
+    const std::uint32_t moved = s.objects.back().firstPolygon;
+    for (int k = 0; k < s.polygons[moved].vertexCount; ++k) s.polygons[moved].vertices[k] += glm::dvec3(0.1, 0.0, 0.0);
+    h.updateGeometry(h.polygonElement(moved));
+    expectSame("a polygon moved");
+    expectSame("nothing changed");
+}
+
 }  // namespace
 }  // namespace rad
