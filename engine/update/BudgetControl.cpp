@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace rad {
 
@@ -11,32 +12,41 @@ void BudgetControl::record(std::size_t linkUpdates, double seconds) {
     if (frames_.size() > kWindow) frames_.pop_front();
 }
 
-std::pair<double, double> BudgetControl::fit() const {
+std::optional<std::pair<double, double>> BudgetControl::fit() const {
+    // No frame yet: the fixed part of a frame (traversal, snapshot) is
+    // unknown, and it is most of a small budget's frame.
+    if (frames_.empty()) return std::nullopt;
     double n = 0.0, sx = 0.0, sy = 0.0;
     for (const auto& [x, y] : frames_) {
         n += 1.0;
         sx += x;
         sy += y;
     }
-    if (n == 0.0) return {0.0, initialCost_};
     const double mx = sx / n, my = sy / n;
     double sxx = 0.0, sxy = 0.0;
     for (const auto& [x, y] : frames_) {
         sxx += (x - mx) * (x - mx);
         sxy += (x - mx) * (y - my);
     }
-    // Too little spread in the update counts to separate the two terms: all
-    // of the time is charged to the updates.
     if (sxx > 0.0 && sxy > 0.0 && frames_.size() >= 4) {
         const double cost = sxy / sxx;
         const double overhead = my - cost * mx;
-        if (overhead >= 0.0) return {overhead, cost};
+        if (overhead >= 0.0) return std::pair{overhead, cost};
     }
-    return {0.0, sx > 0.0 ? sy / sx : initialCost_};
+    // Too little spread in the update counts to separate the two terms: the
+    // first guess of the cost, and the median of what it leaves of the
+    // frames as overhead (a median: the first frame of a drag, slower than
+    // the rest, must not hold the budget at 0 for a window of frames).
+    std::vector<double> rest;
+    for (const auto& [x, y] : frames_) rest.push_back(y - initialCost_ * x);
+    std::nth_element(rest.begin(), rest.begin() + std::ptrdiff_t(rest.size() / 2), rest.end());
+    return std::pair{std::max(0.0, rest[rest.size() / 2]), initialCost_};
 }
 
 std::size_t BudgetControl::budgetFor(double targetSeconds) const {
-    const auto [overhead, cost] = fit();
+    const auto model = fit();
+    if (!model) return 0;  // the first frame measures the fixed part
+    const auto [overhead, cost] = *model;
     if (!(cost > 0.0) || !(targetSeconds > overhead)) return 0;
     const double budget = (targetSeconds - overhead) / cost;
     return budget >= 1e15 ? std::size_t(1e15) : static_cast<std::size_t>(budget);

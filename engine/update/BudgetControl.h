@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <deque>
+#include <optional>
 #include <utility>
 
 namespace rad {
@@ -16,11 +17,12 @@ public:
 
     void record(std::size_t linkUpdates, double seconds);
     // Link updates that fit in the target frame time (0 when even the fixed
-    // overhead does not).
+    // overhead does not, and before the first frame: it measures the
+    // overhead, which the first guess of the cost says nothing about).
     std::size_t budgetFor(double targetSeconds) const;
 
 private:
-    std::pair<double, double> fit() const;  // (overhead, cost)
+    std::optional<std::pair<double, double>> fit() const;  // (overhead, cost), none before a frame
     static constexpr std::size_t kWindow = 32;
     double initialCost_;
     std::deque<std::pair<double, double>> frames_;  // (updates, seconds)

@@ -1,0 +1,37 @@
+// The target frame time to budget model (update/BudgetControl): frames are
+// t = overhead + cost * updates. Timings here are given, not measured.
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "update/BudgetControl.h"
+
+namespace rad {
+namespace {
+
+TEST(BudgetControl, FirstFrameMeasuresTheFixedPart) {
+    BudgetControl control(1e-6);
+    EXPECT_EQ(control.budgetFor(1.0), 0u) << "before any frame the overhead is unknown";
+    control.record(0, 0.020);  // a frame with no link update: its time is the overhead
+    EXPECT_NEAR(double(control.budgetFor(0.030)), 10000.0, 1.0);
+    EXPECT_EQ(control.budgetFor(0.015), 0u) << "a target under the overhead allows nothing";
+}
+
+TEST(BudgetControl, FitsOverheadAndCostOnceTheUpdatesVary) {
+    BudgetControl control(1e-5);  // a first guess ten times too high
+    for (double updates : {0.0, 2000.0, 5000.0, 1000.0, 8000.0}) control.record(std::size_t(updates), 0.020 + 2e-6 * updates);
+    EXPECT_NEAR(double(control.budgetFor(0.030)), 5000.0, 1.0);
+    EXPECT_NEAR(double(control.budgetFor(0.120)), 50000.0, 1.0);
+    EXPECT_EQ(control.budgetFor(0.019), 0u);
+}
+
+TEST(BudgetControl, IgnoresFramesThatAreNotTimes) {
+    BudgetControl control(1e-6);
+    control.record(100, -1.0);
+    control.record(100, std::numeric_limits<double>::quiet_NaN());
+    EXPECT_EQ(control.budgetFor(1.0), 0u) << "no valid frame yet";
+}
+
+}  // namespace
+}  // namespace rad
