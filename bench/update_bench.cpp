@@ -85,4 +85,39 @@ BENCHMARK_CAPTURE(ChairMove, two_offices, "two-offices.gltf")
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
+// One of office's lights dimmed to zero in 10 steps, then its reflectance
+// of a wall changed (issue: edit the scene live): per frame, the partial
+// push-pull from the edited elements, the further bounces, refinement that
+// follows the light and the snapshot; the error of the last frame against a
+// from-scratch solve of the edited scene.
+void LightDim(benchmark::State& state, const char* scene, const char* light) {
+    const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
+    const rad::Scene loaded = rad::loadGltf(std::string(RADIOSITY_SOURCE_DIR) + "/scenes/" + scene);
+    std::vector<double> total, snapshot;
+    double rms = 0.0;
+    for (auto _ : state) {
+        rad::Engine engine(loaded, rad::EngineSettings{});
+        engine.solve();
+        const std::uint32_t object = *engine.scene().findObject(light);
+        const glm::dvec3 emission =
+            engine.scene().materials[engine.scene().polygons[engine.scene().objects[object].firstPolygon].material].emission;
+        for (int f = 1; f <= kFrames; ++f) {
+            const rad::FrameStats fs = engine.editMaterial(light, emission * (1.0 - double(f) / kFrames), std::nullopt);
+            total.push_back(fs.totalSeconds);
+            snapshot.push_back(fs.snapshotSeconds);
+        }
+        rad::Engine full(engine.scene(), rad::EngineSettings{});
+        full.solve();
+        rms = rad::compareSamples(engine.samples(), full.samples()).rms;
+    }
+    std::sort(total.begin(), total.end());
+    std::sort(snapshot.begin(), snapshot.end());
+    state.counters["median_total_s"] = total[total.size() / 2];
+    state.counters["worst_total_s"] = total.back();
+    state.counters["median_snapshot_s"] = snapshot[snapshot.size() / 2];
+    state.counters["rms_vs_full_last"] = rms;
+}
+
+BENCHMARK_CAPTURE(LightDim, office, "office.gltf", "light-1")->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+
 }  // namespace

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <sstream>
 
 #include "geometry/RayCaster.h"
+#include "radiosity/Gltf.h"
 #include "hierarchy/Hierarchy.h"
 #include "links/Link.h"
 #include "refine/Refiner.h"
@@ -308,6 +310,83 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
     }
     s.buildMesh(f);
     return f;
+}
+
+FrameStats Engine::editMaterial(const std::string& object, const std::optional<glm::dvec3>& emission,
+                                const std::optional<glm::dvec3>& reflectance, const UpdateSettings& settings) {
+    State& s = *state_;
+    if (!s.solved) throw std::logic_error("editMaterial before solve()");
+    const std::optional<std::uint32_t> found = s.scene.findObject(object);
+    if (!found || s.scene.objects[*found].polygonCount == 0)
+        throw std::invalid_argument("no object '" + object + "' with polygons in " + s.scene.sourcePath);
+    const auto channels = [](const glm::dvec3& v) {
+        std::ostringstream out;
+        out << v.x << "," << v.y << "," << v.z;
+        return out.str();
+    };
+    if (emission && (!glm::all(glm::greaterThanEqual(*emission, glm::dvec3(0.0))) ||
+                     !std::isfinite(emission->x + emission->y + emission->z)))
+        throw std::invalid_argument("emission " + channels(*emission) + " of '" + object +
+                                    "': each channel must be finite and at least 0");
+    if (reflectance && !(glm::all(glm::greaterThanEqual(*reflectance, glm::dvec3(0.0))) &&
+                         glm::all(glm::lessThanEqual(*reflectance, glm::dvec3(1.0)))))
+        throw std::invalid_argument("reflectance " + channels(*reflectance) + " of '" + object +
+                                    "': each channel must be in [0, 1]");
+    const Object& o = s.scene.objects[*found];
+    // The object's own copies of its materials (other objects may share
+    // them), with only the given values changed.
+    std::map<std::uint32_t, std::uint32_t> copyOf;
+    for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) {
+        const std::uint32_t old = s.scene.polygons[p].material;
+        if (copyOf.count(old)) continue;
+        Material m = s.scene.materials[old];
+        if (emission) m.emission = *emission;
+        if (reflectance) m.reflectance = glm::min(*reflectance, glm::dvec3(kMaxReflectance));
+        const Material& was = s.scene.materials[old];
+        if (m.emission == was.emission && m.reflectance == was.reflectance) {
+            copyOf[old] = old;  // nothing to change
+            continue;
+        }
+        m.name = was.name + " (" + object + ", edited)";
+        copyOf[old] = static_cast<std::uint32_t>(s.scene.materials.size());
+        s.scene.materials.push_back(m);
+    }
+    std::vector<ElementId> changed;
+    for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) {
+        const std::uint32_t material = copyOf[s.scene.polygons[p].material];
+        if (material == s.scene.polygons[p].material) continue;
+        s.scene.polygons[p].material = material;
+        const Material& m = s.scene.materials[material];
+        const ElementId top = s.hierarchy.polygonElement(p);
+        if (top == kNone) continue;
+        changed.push_back(top);
+        // Every element of its quadtree: the leaves reflect, and children
+        // made later copy their parent's.
+        for (std::vector<ElementId> stack{top}; !stack.empty();) {
+            const ElementId e = stack.back();
+            stack.pop_back();
+            s.hierarchy[e].emission = m.emission;
+            s.hierarchy[e].reflectance = m.reflectance;
+            for (ElementId c : s.hierarchy[e].children) stack.push_back(c);
+        }
+    }
+    if (changed.empty()) return FrameStats{};  // the values it already has: nothing changes
+    FrameStats stats = s.updater.propagate(changed, settings);
+    // The light changed everywhere its bounces reached, not in a region a
+    // shaft bounds: refinement is judged again from it, as a solve of the
+    // edited scene would judge (its threshold relative to the new emitted
+    // power, the oracles at the new radiosity), and anchored there.
+    const double power = emittedPower(s.scene);
+    if (power > 0.0) {
+        RefineSettings rs = s.refiner.settings();
+        rs.referencePower = power;
+        s.refiner.setSettings(rs);
+    }
+    s.setOracles();
+    s.updater.judgeAgain(settings, stats);
+    anchorOracles(s.hierarchy);
+    s.buildMesh(stats);
+    return stats;
 }
 
 std::size_t Engine::budgetFor(double targetSeconds) const { return state_->budget.budgetFor(targetSeconds); }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
 #include "refine/Refiner.h"
@@ -177,6 +178,55 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     stats.pushPullSeconds = secondsSince(t);
     finish(stats, start);
     return stats;
+}
+
+FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, const UpdateSettings& settings) {
+    const auto start = std::chrono::steady_clock::now();
+    FrameStats stats;
+    const std::size_t budget = settings.budget.value_or(kUnlimited);
+    stats.budget = budget;
+    setDeadline(start, settings);
+    ++frame_;
+    candidates_.clear();
+    modified_.clear();
+    linkStamp_.resize(links_.slots(), 0);
+    // Pushed whole (a dirty element's subtree is pushed again), then the
+    // steps 3 and 4 of a move: nothing moved, so no link changes its form
+    // factor; what changed is the light the links carry.
+    for (ElementId e : elements) refiner_.markDirty(e);
+    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
+    stats.changedElements = visited.size();
+    recordOverlay(visited, false);
+    bounce(std::move(visited), settings, stats);
+    stats.pushPullSeconds = secondsSince(start);
+    finish(stats, start);
+    return stats;
+}
+
+void LineSpaceUpdate::judgeAgain(const UpdateSettings& settings, FrameStats& stats) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t budget = settings.budget.value_or(kUnlimited);
+    // Every active link, on all cores (judging is most of it when little
+    // changes), in element order.
+    std::vector<std::vector<LinkId>> wanted(h_.size());
+    tbb::parallel_for(ElementId(0), ElementId(h_.size()), [&](ElementId e) {
+        for (LinkId id : h_[e].links)
+            if (refiner_.wouldRefine(links_[id])) wanted[e].push_back(id);
+    });
+    RefineHeap heap;
+    for (const std::vector<LinkId>& ids : wanted)
+        for (LinkId id : ids) heap.push({heapKey(links_[id]), id});
+    refineFromHeap(heap, stats, budgetLeft(budget, stats.spent));
+    const std::size_t reinstated = reinstateUnneeded();
+    stats.reinstated += reinstated;
+    stats.spent += reinstated;
+    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
+    stats.changedElements += visited.size();
+    bounce(std::move(visited), settings, stats);
+    touched_.clear();  // the oracles are anchored at this light next (Engine)
+    stats.updateSeconds += secondsSince(start);
+    finish(stats, start - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                std::chrono::duration<double>(stats.totalSeconds)));
 }
 
 // Links made during the frame (refinement) have ids past the stamps sized

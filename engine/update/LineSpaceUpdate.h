@@ -46,6 +46,16 @@ public:
     // (see Obstacles.h); links with both ends on it whose shafts meet one
     // are updated too.
     void setObstacles(std::vector<Aabb> obstacles) { obstacles_ = std::move(obstacles); }
+    // The emission or reflectance of `elements` (and their subtrees)
+    // changed: their radiosity is pushed again, the change goes out through
+    // further bounces, and refinement follows the light, within the budget.
+    FrameStats propagate(const std::vector<ElementId>& elements, const UpdateSettings& settings);
+    // After such a change, once the oracles are set from the new light:
+    // every active link judged again (refined within the budget, the rest
+    // pending) and the p-links no longer needed reinstated, as a solve's
+    // refinement would leave them; then the light of what changed, bounced.
+    // Adds to `stats`.
+    void judgeAgain(const UpdateSettings& settings, FrameStats& stats);
     // Refines, within the budget, the links a budget left coarse, with no
     // motion (what an idle viewer does between moves).
     FrameStats refinePending(const UpdateSettings& settings);

@@ -50,6 +50,17 @@ public:
     // Throws std::invalid_argument for a non-rigid or non-finite transform.
     FrameStats moveDynamicObject(const glm::dmat4& worldFromLocal, const UpdateSettings& settings = {});
 
+    // Changes the emission and/or the reflectance of one object (every
+    // surface element of its polygons, and the object's own copy of its
+    // material in the scene) and updates the solution without a new solve:
+    // a partial push-pull from its elements, further bounces through the
+    // links leaving everything that changed, and refinement that follows the
+    // light, within the settings' budget. Emission: finite, each channel at
+    // least 0. Reflectance: each channel in [0, 1], values above
+    // kMaxReflectance (Gltf.h) read as it. Throws std::invalid_argument naming
+    // the object and the value otherwise, or for an unknown object.
+    FrameStats editMaterial(const std::string& object, const std::optional<glm::dvec3>& emission,
+                            const std::optional<glm::dvec3>& reflectance, const UpdateSettings& settings = {});
     // Refines, within the settings' budget and without motion, the links an
     // earlier budget left coarse; with nothing left to refine, gives back the
     // growth slack of the link lists.

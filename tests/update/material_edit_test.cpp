@@ -1,0 +1,93 @@
+// Lights and materials edited live (Engine::editMaterial): the edited
+// solution against a from-scratch solve of the edited scene, a light dimmed to
+// zero, a wall's colour changed and changed back, and bad values refused.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "radiosity/Engine.h"
+#include "support/Motion.h"
+#include "support/TestScenes.h"
+
+namespace rad {
+namespace {
+
+using V = glm::dvec3;
+
+// roomWithBlock with a second lamp in a corner of the ceiling.
+Scene twoLamps() {
+    Scene s = test::roomWithBlock();
+    const std::uint32_t lamp = test::addMaterial(s, V(0.0), V(6.0, 5.0, 4.0), "lamp");
+    test::addQuadObject(s, "lamp-2", lamp, {{V(0.4, 2.999, 0.4), V(1.0, 2.999, 0.4), V(1.0, 2.999, 1.0), V(0.4, 2.999, 1.0)}});
+    return s;
+}
+
+TEST(MaterialEdit, LightDimmedToZeroIsTheSceneWithoutIt) {
+    const EngineSettings settings;
+    Engine engine(twoLamps(), settings);
+    ASSERT_TRUE(engine.solve().converged);
+    const RadiositySamples before = engine.samples();
+    const FrameStats f = engine.editMaterial("lamp-2", V(0.0), std::nullopt);
+    EXPECT_GT(f.changedElements, 0u);
+    const SolutionError e = test::compareWithFullSolve(engine, settings);
+    EXPECT_LT(e.rms, 0.005) << "max " << e.max << ", worst object " << e.worstObjectRms;
+    EXPECT_TRUE(test::allFinite(engine.samples()));
+    // It did change the light: the room is darker than before.
+    EXPECT_GT(compareSamples(before, engine.samples()).rms, 0.05);
+    // The edit is in the scene the engine holds, and only for that object.
+    const Scene& scene = engine.scene();
+    const std::uint32_t lamp2 = *scene.findObject("lamp-2");
+    const std::uint32_t light = *scene.findObject("light");
+    EXPECT_EQ(scene.materials[scene.polygons[scene.objects[lamp2].firstPolygon].material].emission, V(0.0));
+    EXPECT_EQ(scene.materials[scene.polygons[scene.objects[light].firstPolygon].material].emission, V(10.0));
+}
+
+TEST(MaterialEdit, EmissionRaisedAndRecolouredMatchesAFullSolve) {
+    const EngineSettings settings = test::coarse();
+    Engine engine(twoLamps(), settings);
+    ASSERT_TRUE(engine.solve().converged);
+    engine.editMaterial("lamp-2", V(18.0, 10.0, 2.0), std::nullopt);
+    const SolutionError e = test::compareWithFullSolve(engine, settings);
+    EXPECT_LT(e.rms, 0.01) << "max " << e.max;
+    EXPECT_LT(e.worstObjectRms, 0.03);
+}
+
+TEST(MaterialEdit, WallRecolouredThenBackReturnsTheSolution) {
+    const EngineSettings settings = test::coarse();
+    Engine engine(twoLamps(), settings);
+    ASSERT_TRUE(engine.solve().converged);
+    const RadiositySamples original = engine.samples();
+    engine.editMaterial("wall-x0", std::nullopt, V(0.2, 0.5, 0.3));
+    const SolutionError e = test::compareWithFullSolve(engine, settings);
+    EXPECT_LT(e.rms, 0.01) << "max " << e.max;
+    EXPECT_LT(e.worstObjectRms, 0.03);
+    EXPECT_GT(compareSamples(engine.samples(), original).rms, 0.01) << "the wall's colour changed the room";
+    engine.editMaterial("wall-x0", std::nullopt, V(0.7));
+    EXPECT_LT(compareSamples(engine.samples(), original).rms, 0.001) << "back to the original colour";
+}
+
+TEST(MaterialEdit, BadValuesAndObjectsAreRefusedByName) {
+    Engine engine(twoLamps(), test::coarse());
+    ASSERT_TRUE(engine.solve().converged);
+    const auto message = [&](const std::string& object, std::optional<V> emission, std::optional<V> reflectance) {
+        try {
+            engine.editMaterial(object, emission, reflectance);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message("lamp-2", V(-1.0, 0.0, 0.0), std::nullopt).find("emission"), std::string::npos);
+    EXPECT_NE(message("lamp-2", V(std::nan(""), 0.0, 0.0), std::nullopt).find("lamp-2"), std::string::npos);
+    EXPECT_NE(message("wall-x0", std::nullopt, V(0.5, 1.2, 0.5)).find("reflectance"), std::string::npos);
+    EXPECT_NE(message("no-such-thing", V(1.0), std::nullopt).find("no-such-thing"), std::string::npos);
+    // Nothing was changed by the refused edits.
+    const SolutionError e = test::compareWithFullSolve(engine, test::coarse());
+    EXPECT_LT(e.rms, 0.01);
+}
+
+}  // namespace
+}  // namespace rad
