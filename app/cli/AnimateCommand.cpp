@@ -17,6 +17,7 @@
 #include "cli/EngineOptions.h"
 #include "cli/MotionOptions.h"
 #include "cli/RenderOutput.h"
+#include "cli/Script.h"
 #include "cli/Report.h"
 #include "cli/Warnings.h"
 #include "radiosity/Gltf.h"
@@ -103,7 +104,7 @@ Report makeReport(const AnimateSettings& s, const Scene& scene, const AnimationR
     }
     return {
         {"scene", s.scene},
-        {"object", s.motion.object},
+        {"object", s.motion.object.empty() ? Report(nullptr) : Report(s.motion.object)},
         {"frames_requested", s.motion.frames},
         {"epsilon", s.engine.epsilon},
         {"initial",
@@ -125,8 +126,9 @@ Report makeReport(const AnimateSettings& s, const Scene& scene, const AnimationR
     };
 }
 
-int animate(const AnimateSettings& s) {
-    requireMotion(s.motion);
+int animate(const AnimateSettings& settings) {
+    AnimateSettings s = settings;
+    resolveMotion(s.motion);
     if (s.report) checkWritable(*s.report, s.force);
     if (s.images) {
         std::filesystem::create_directories(*s.images);
@@ -136,13 +138,14 @@ int animate(const AnimateSettings& s) {
     ImportNotes notes;
     const Scene scene = loadGltf(s.scene, &notes);
     printWarnings(importWarnings(notes));
+    if (s.motion.script) checkScriptObjects(Script{s.motion.frames, s.motion.object, s.motion.motion, s.motion.edits}, *s.motion.script, scene);
 
     References references;
     const MotionRequest& request = s.motion;
     const AnimationRun run = runAnimation(
-        scene, s.engine, request.object, request.motion, request.frames, s.control,
+        scene, s.engine, request.object, request.motion, request.edits, request.frames, s.control,
         s.compareFull ? &references : nullptr, [&](int f, const Engine& engine, const FrameRecord* record) {
-            if (f == 0 && !engine.scene().objects[*engine.dynamicObject()].dynamic) {
+            if (f == 0 && !request.object.empty() && !engine.scene().objects[*engine.dynamicObject()].dynamic) {
                 const ReinsertionStats& r = record->stats.reinsertion;
                 std::printf("'%s' is not marked dynamic: its cluster was attached to the root and relinked "
                             "(%zu links removed, %zu created) in %.3f s\n",

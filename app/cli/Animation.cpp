@@ -28,13 +28,47 @@ double median(std::vector<double> v) {
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
+// The frame's figures when it both moved and edited: times and counts add
+// up, the state after it (links, pending, estimate) is the last one's.
+void addFrame(FrameStats& into, const FrameStats& more) {
+    into.traversalSeconds += more.traversalSeconds;
+    into.updateSeconds += more.updateSeconds;
+    into.pushPullSeconds += more.pushPullSeconds;
+    into.snapshotSeconds += more.snapshotSeconds;
+    into.totalSeconds += more.totalSeconds;
+    into.spent += more.spent;
+    into.reinstated += more.reinstated;
+    into.refined += more.refined;
+    into.changedElements += more.changedElements;
+    into.bounces += more.bounces;
+    into.links = more.links;
+    into.elements = more.elements;
+    into.pending = more.pending;
+    into.stale = more.stale;
+    into.estimatedError = more.estimatedError;
+}
+
 AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::string& objectName,
-                          const Motion& motion, int frames, const BudgetControlSetting& control,
+                          const Motion& motion, const std::vector<Edit>& edits, int frames,
+                          const BudgetControlSetting& control,
                           References* references, const std::function<void(int, const Engine&, const FrameRecord*)>& onFrame) {
     AnimationRun run;
     Engine engine(scene, settings);
-    const auto object = engine.scene().findObject(objectName);
-    if (!object) throw std::runtime_error(scene.sourcePath + ": no object named '" + objectName + "'");
+    const bool moves = !objectName.empty();
+    std::uint32_t object = 0;
+    if (moves) {
+        const auto found = engine.scene().findObject(objectName);
+        if (!found) throw std::runtime_error(scene.sourcePath + ": no object named '" + objectName + "'");
+        object = *found;
+    }
+    // Where each edit starts: the object's values in the file.
+    std::vector<Material> startOf;
+    for (const Edit& e : edits) {
+        const auto o = engine.scene().findObject(e.object);
+        if (!o || engine.scene().objects[*o].polygonCount == 0)
+            throw std::runtime_error(scene.sourcePath + ": no object named '" + e.object + "' with polygons");
+        startOf.push_back(engine.scene().materials[engine.scene().polygons[engine.scene().objects[*o].firstPolygon].material]);
+    }
     const auto start = std::chrono::steady_clock::now();
     engine.solve([&](const std::string& line) {
         if (secondsSince(start) > 1.0) std::fprintf(stderr, "solve: %s\n", line.c_str());
@@ -42,14 +76,18 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
     run.solveSeconds = secondsSince(start);
     run.initial = engine.stats();
     if (!run.initial.converged) throw std::runtime_error("the initial solve did not converge: " + run.initial.message);
-    run.markedDynamic = engine.scene().objects[*object].dynamic;
-    try {
-        run.selection = engine.setDynamicObject(objectName);
-    } catch (const std::invalid_argument& e) {
-        throw std::runtime_error(e.what());
+    glm::dmat4 startTransform(1.0);
+    glm::dvec3 center(0.0);
+    if (moves) {
+        run.markedDynamic = engine.scene().objects[object].dynamic;
+        try {
+            run.selection = engine.setDynamicObject(objectName);
+        } catch (const std::invalid_argument& e) {
+            throw std::runtime_error(e.what());
+        }
+        startTransform = engine.scene().objects[object].worldFromLocal;
+        center = engine.scene().objectBounds(object).center();
     }
-    const glm::dmat4 startTransform = engine.scene().objects[*object].worldFromLocal;
-    const glm::dvec3 center = engine.scene().objectBounds(*object).center();
     if (onFrame) {
         FrameRecord chosen;
         chosen.stats = run.selection;
@@ -64,7 +102,23 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
             record.targetSeconds = 1.0 / *control.targetFps;
             update.budget = engine.budgetFor(*record.targetSeconds);
         }
-        record.stats = engine.moveDynamicObject(motion.at(double(f) / frames, center, startTransform), update);
+        const double t = double(f) / frames;
+        if (moves) record.stats = engine.moveDynamicObject(motion.at(t, center, startTransform), update);
+        for (std::size_t k = 0; k < edits.size(); ++k) {
+            const Edit& e = edits[k];
+            std::optional<glm::dvec3> emission, reflectance;
+            if (e.emission) emission = glm::mix(startOf[k].emission, *e.emission, t);
+            if (e.reflectance) reflectance = glm::mix(startOf[k].reflectance, *e.reflectance, t);
+            // What the move left of the frame's budget.
+            UpdateSettings left = update;
+            if (update.budget) left.budget = *update.budget - std::min(*update.budget, record.stats.spent);
+            try {
+                addFrame(record.stats, engine.editMaterial(e.object, emission, reflectance, left));
+            } catch (const std::invalid_argument& error) {
+                throw std::runtime_error(error.what());
+            }
+        }
+        if (!moves) record.stats.budget = update.budget.value_or(kUnlimited);
         if (references) {
             if (references->samples.size() < std::size_t(f)) {
                 const auto t = std::chrono::steady_clock::now();

@@ -3,18 +3,17 @@
 #include <glm/glm.hpp>
 
 #include "cli/Args.h"
+#include "cli/Script.h"
 
 namespace rad::cli {
 
 void addMotionOptions(CLI::App& command, MotionRequest& request) {
-    command.add_option("--object", request.object, "the object to move, any object with polygons")
-        ->type_name("NAME")
-        ->required();
-    command.add_option("--frames", request.frames, "number of equal steps of the motion, 1..100000")
+    CLI::Option* object = command.add_option("--object", request.object, "the object to move, any object with polygons")
+        ->type_name("NAME");
+    CLI::Option* frames = command.add_option("--frames", request.frames, "number of equal steps of the motion, 1..100000")
         ->type_name("N")
-        ->required()
         ->transform(integerIn(1, 100000));
-    command.add_option("--translate", "total translation in metres (repeatable, summed)")
+    CLI::Option* translate = command.add_option("--translate", "total translation in metres (repeatable, summed)")
         ->type_name("X,Y,Z")
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
         ->each([&request](const std::string& text) {
@@ -22,7 +21,7 @@ void addMotionOptions(CLI::App& command, MotionRequest& request) {
             request.motion.translation += glm::dvec3(v[0], v[1], v[2]);
             ++request.motionOptions;
         });
-    command
+    CLI::Option* rotate = command
         .add_option("--rotate",
                     "total rotation about the axis through the object's bounding-box\n"
                     "centre at the start (repeatable, applied in order)")
@@ -36,9 +35,28 @@ void addMotionOptions(CLI::App& command, MotionRequest& request) {
             request.motion.rotations.push_back({glm::normalize(axis), v[3]});
             ++request.motionOptions;
         });
+    command
+        .add_option("--script", request.script,
+                    "moves and light or colour edits over the frames, from a JSON file\n"
+                    "(instead of --object, --frames, --translate and --rotate)")
+        ->type_name("MOVES.json")
+        ->excludes(object)
+        ->excludes(frames)
+        ->excludes(translate)
+        ->excludes(rotate);
 }
 
-void requireMotion(const MotionRequest& request) {
+void resolveMotion(MotionRequest& request) {
+    if (request.script) {
+        Script script = readScript(*request.script);
+        request.object = script.object;
+        request.frames = script.frames;
+        request.motion = script.motion;
+        request.edits = std::move(script.edits);
+        return;
+    }
+    if (request.object.empty() || request.frames == 0)
+        throw UsageError("needs --object NAME and --frames N, or --script MOVES.json");
     if (request.motionOptions == 0)
         throw UsageError("needs a motion: --translate X,Y,Z and/or --rotate AX,AY,AZ,DEG");
 }

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -13,17 +14,21 @@
 namespace rad::cli {
 
 struct MotionRequest {
-    std::string object;
+    std::string object;  // empty: nothing moves (a script of edits only)
     int frames = 0;
     Motion motion;
+    std::vector<Edit> edits;  // from a script
     int motionOptions = 0;  // --translate and --rotate given: at least one is needed
+    std::optional<std::string> script;
 };
 
-// --object NAME and --frames N (both required), --translate X,Y,Z and
-// --rotate AX,AY,AZ,DEG (repeatable).
+// --object NAME and --frames N, --translate X,Y,Z and --rotate AX,AY,AZ,DEG
+// (repeatable); or --script MOVES.json instead of all of them (cli/Script.h).
 void addMotionOptions(CLI::App& command, MotionRequest& request);
-// After parsing: throws UsageError unless a --translate or --rotate was given.
-void requireMotion(const MotionRequest& request);
+// After parsing: reads the script if one was given (throws UsageError for a
+// bad one); otherwise throws UsageError unless --object, --frames and a
+// --translate or --rotate were given.
+void resolveMotion(MotionRequest& request);
 
 // A link-update budget: "inf" (or "unlimited") for none, else a count of link
 // updates. Throws CLI::ValidationError (see cli/Args.h).

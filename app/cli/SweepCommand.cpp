@@ -18,6 +18,7 @@
 #include "cli/MotionOptions.h"
 #include "cli/RenderOutput.h"
 #include "cli/Report.h"
+#include "cli/Script.h"
 #include "cli/Warnings.h"
 #include "image/AtomicFile.h"
 #include "plot/Plot.h"
@@ -85,8 +86,9 @@ double rankCorrelation(const std::vector<double>& a, const std::vector<double>& 
 
 std::string budgetText(const std::optional<std::size_t>& b) { return b ? std::to_string(*b) : "inf"; }
 
-int sweep(const SweepSettings& s) {
-    requireMotion(s.motion);
+int sweep(const SweepSettings& settingsGiven) {
+    SweepSettings s = settingsGiven;
+    resolveMotion(s.motion);
     const std::string& scenePath = s.scene;
     const MotionRequest& request = s.motion;
     const EngineSettings& settings = s.engine;
@@ -98,6 +100,7 @@ int sweep(const SweepSettings& s) {
     ImportNotes notes;
     const Scene scene = loadGltf(scenePath, &notes);
     printWarnings(importWarnings(notes));
+    if (request.script) checkScriptObjects(Script{request.frames, request.object, request.motion, request.edits}, *request.script, scene);
     std::filesystem::create_directories(out);
 
     References references;  // the from-scratch solves, shared by every run
@@ -108,7 +111,8 @@ int sweep(const SweepSettings& s) {
         std::fprintf(stderr, "sweep: %s %s\n", row.kind.c_str(),
                      row.kind == "budget" ? budgetText(row.budget).c_str() : std::to_string(*row.targetFps).c_str());
         const AnimationRun run =
-            runAnimation(scene, settings, request.object, request.motion, request.frames, control, &references);
+            runAnimation(scene, settings, request.object, request.motion, request.edits, request.frames, control,
+                         &references);
         if (rows.empty()) printWarnings(run.initial.warnings);  // every run solves the same: say it once
         std::vector<double> seconds, rms, objectRms, spent, budget, estimated, rmsReference;
         for (const FrameRecord& f : run.frames) {
@@ -180,7 +184,7 @@ int sweep(const SweepSettings& s) {
         csv += line;
     }
     writeReport((out / "trade.json").string(), {{"scene", scenePath},
-                                                {"object", request.object},
+                                                {"object", request.object.empty() ? Report(nullptr) : Report(request.object)},
                                                 {"frames", request.frames},
                                                 {"epsilon", settings.epsilon},
                                                 {"median_full_solve_seconds", median(references.seconds)},

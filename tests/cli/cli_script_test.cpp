@@ -1,0 +1,104 @@
+// radiosity-cli animate --script on the Cornell box: moves and light or
+// colour edits over the frames, checked against a from-scratch solve of every
+// frame; and the one-line errors of bad scripts (exit 2).
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "support/Cli.h"
+#include "support/TempDir.h"
+#include "support/TestScenes.h"
+
+namespace rad {
+namespace {
+
+using nlohmann::json;
+using test::jsonAt;
+using test::kCornell;
+using test::runCli;
+using test::shellQuote;
+
+std::string writeScript(const test::TempDir& dir, const std::string& name, const std::string& text) {
+    const std::string path = (dir / name).string();
+    std::ofstream(path) << text;
+    return path;
+}
+
+TEST(CliScript, MovesAndEditsMatchAFullSolveEveryFrame) {
+    test::TempDir dir;
+    const std::string script = writeScript(dir, "moves.json", R"({"frames": 3, "actions": [
+        {"object": "short-block", "translate": [0, 0, 0.15]},
+        {"object": "short-block", "rotate": [0, 1, 0, 15]},
+        {"object": "light", "emission": [12, 10, 6]},
+        {"object": "back-wall", "reflectance": [0.2, 0.5, 0.3]}]})");
+    const std::string report = (dir / "r.json").string();
+    const auto r = runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote(script) +
+                          " --compare-full --report " + shellQuote(report));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const json doc = test::readJson(report);
+    EXPECT_EQ(jsonAt(doc, "/object"), "short-block");
+    EXPECT_EQ(jsonAt(doc, "/frames_requested"), 3);
+    const json frames = jsonAt(doc, "/frames");
+    ASSERT_EQ(frames.size(), 3u);
+    for (const json& f : frames) {
+        EXPECT_LE(jsonAt(f, "/error_vs_full/rms"), 0.01) << f.dump();
+        EXPECT_LE(jsonAt(f, "/error_vs_full/worst_object_rms"), 0.05) << f.dump();
+        EXPECT_GT(jsonAt(f, "/changed_elements"), 0);
+    }
+}
+
+TEST(CliScript, EditsAloneNeedNoMovingObject) {
+    test::TempDir dir;
+    const std::string script = writeScript(dir, "dim.json", R"({"frames": 2, "actions": [
+        {"object": "light", "emission": [2, 2, 2]}]})");
+    const std::string report = (dir / "r.json").string();
+    const auto r = runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote(script) +
+                          " --compare-full --report " + shellQuote(report));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const json doc = test::readJson(report);
+    EXPECT_TRUE(jsonAt(doc, "/object").is_null());
+    const json frames = jsonAt(doc, "/frames");
+    ASSERT_EQ(frames.size(), 2u);
+    // The only light dimmed, halfway and all the way: as a full solve of
+    // each frame's scene has it.
+    for (const json& f : frames) EXPECT_LE(jsonAt(f, "/error_vs_full/rms"), 0.01) << f.dump();
+}
+
+TEST(CliScript, BadScriptsFailWithOneLineNamingTheAction) {
+    test::TempDir dir;
+    const auto run = [&](const std::string& text) {
+        return runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote(writeScript(dir, "bad.json", text)));
+    };
+    const struct {
+        const char* script;
+        const char* says;
+    } cases[] = {
+        {R"({"frames": 2, "actions": [{"object": "nobody", "translate": [0, 0, 1]}]})", "nobody"},
+        {R"({"frames": 2, "actions": [{"object": "light", "emission": [1, 2]}]})", "action 1 ('light')"},
+        {R"({"frames": 2, "actions": [{"object": "tall-block", "translate": [0, 0, 1]},
+             {"object": "back-wall", "reflectance": [0.5, 1.5, 0.5]}]})", "action 2 ('back-wall')"},
+        {R"({"frames": 2, "actions": [{"object": "light", "emission": [-1, 0, 0]}]})", "emission"},
+        {R"({"frames": 2, "actions": [{"object": "light", "translate": [0, 0, 1]},
+             {"object": "tall-block", "rotate": [0, 1, 0, 10]}]})", "one object moves"},
+        {R"({"frames": 2, "actions": [{"object": "light", "spin": 3}]})", "spin"},
+        {R"({"frames": 0, "actions": [{"object": "light", "translate": [0, 0, 1]}]})", "frames"},
+        {R"({"frames": 2, "actions": [{"object": "light", "translate": [0, 0, 1]})", "JSON"},
+    };
+    for (const auto& c : cases) {
+        const auto r = run(c.script);
+        EXPECT_EQ(r.exitCode, 2) << c.script << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.says), std::string::npos) << c.script << "\n" << r.output;
+        EXPECT_EQ(r.output.find("error:"), r.output.rfind("error:")) << "one error line: " << r.output;
+    }
+    // --script stands for the motion options.
+    const auto r = runCli("animate " + shellQuote(kCornell) + " --script " +
+                          shellQuote(writeScript(dir, "ok.json", R"({"frames": 1, "actions": [{"object": "light", "emission": [1, 1, 1]}]})")) +
+                          " --object light");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_EQ(runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote((dir / "missing.json").string())).exitCode, 2);
+}
+
+}  // namespace
+}  // namespace rad
