@@ -101,6 +101,17 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
     else
         ImGui::Text("selected: %s%s", s.selected.c_str(), s.movable ? "" : " (fixed)");
     if (!s.selectionNote.empty()) ImGui::TextWrapped("%s", s.selectionNote.c_str());
+    if (!s.selected.empty() && s.movable) {
+        // Applied when released: each edit updates the whole solution.
+        ImGui::ColorEdit3("reflectance", c.reflectance, ImGuiColorEditFlags_Float);
+        a.reflectanceEdited = ImGui::IsItemDeactivatedAfterEdit();
+        if (s.emitter) {
+            ImGui::ColorEdit3("light colour", c.emissionColor, ImGuiColorEditFlags_Float);
+            a.emissionEdited = ImGui::IsItemDeactivatedAfterEdit();
+            ImGui::SliderFloat("intensity", &c.emissionIntensity, 0.0f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+            a.emissionEdited |= ImGui::IsItemDeactivatedAfterEdit();
+        }
+    }
     ImGui::TextDisabled("left drag: orbit   right drag: pan");
     ImGui::TextDisabled("wheel: zoom   Ctrl+Q: quit");
 

@@ -33,6 +33,8 @@ struct PanelState {
     std::string selected;  // empty: nothing selected
     bool movable = false;
     std::string selectionNote;
+    // The selected object emits (its controls show colour and intensity).
+    bool emitter = false;
 
     std::string lastMessage;  // "saved x.png", errors from the buttons
 };
@@ -44,6 +46,11 @@ struct PanelControls {
     float exposure = 0.0f;     // EV
     bool showLinks = false;
     bool showChanged = false;
+    // The selected object's colour and light, linear RGB; the program loads
+    // them when the selection changes.
+    float reflectance[3] = {0.0f, 0.0f, 0.0f};
+    float emissionColor[3] = {1.0f, 1.0f, 1.0f};  // largest channel 1
+    float emissionIntensity = 0.0f;                // emission = colour x intensity
 };
 
 struct PanelActions {
@@ -53,6 +60,8 @@ struct PanelActions {
     bool exposureChanged = false;
     bool saveScreenshot = false;
     bool exportMesh = false;
+    bool reflectanceEdited = false;  // on release of the control
+    bool emissionEdited = false;
 };
 
 // Draws the panel window at the top left.

@@ -48,6 +48,7 @@ struct EngineThread::Worker {
     std::optional<std::uint32_t> selected;
     std::string selectionNote;
     std::map<std::uint32_t, glm::dmat4> moved;  // transforms applied, to re-apply after a re-solve
+    std::vector<EditMaterial> edits;            // likewise, in order
     std::deque<UpdateSample> history;
 
     double now() const {
@@ -138,9 +139,16 @@ void EngineThread::run() {
         s->selectionNote = w.selectionNote;
         s->updateTimes.assign(w.history.begin(), w.history.end());
         const Scene& scene = w.engine ? w.engine->scene() : w.original;
-        for (std::uint32_t o = 0; o < scene.objects.size(); ++o)
-            s->objects.push_back({scene.objects[o].name, scene.objects[o].polygonCount > 0,
-                                  scene.objects[o].worldFromLocal, scene.objectBounds(o)});
+        for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
+            const Object& object = scene.objects[o];
+            ObjectInfo info{object.name, object.polygonCount > 0, object.worldFromLocal, scene.objectBounds(o)};
+            if (object.polygonCount > 0) {
+                const Material& m = scene.materials[scene.polygons[object.firstPolygon].material];
+                info.emission = m.emission;
+                info.reflectance = m.reflectance;
+            }
+            s->objects.push_back(std::move(info));
+        }
         if (w.engine && !w.solving && w.error.empty()) {
             s->solve = w.engine->stats();
             s->memory = w.engine->memory();
@@ -200,6 +208,7 @@ void EngineThread::run() {
                 w.engine->setDynamicObject(w.engine->scene().objects[object].name);
                 w.frame = w.engine->moveDynamicObject(m);
             }
+            for (const EditMaterial& e : w.edits) w.frame = w.engine->editMaterial(e.object, e.emission, e.reflectance);
             w.solving = false;
             w.progress = w.engine->stats().converged ? "solved" : w.engine->stats().message;
             select(current);
@@ -319,6 +328,17 @@ void EngineThread::run() {
                         },
                         [&](const SetOverlays& o) {
                             w.overlays = o.overlays;
+                            changed = true;
+                        },
+                        [&](const EditMaterial& e) {
+                            // Consecutive edits of one object: only the newest counts.
+                            if (i + 1 < commands.size())
+                                if (const auto* next = std::get_if<EditMaterial>(&commands[i + 1]);
+                                    next && next->object == e.object && (next->emission || !e.emission) &&
+                                    (next->reflectance || !e.reflectance))
+                                    return;
+                            w.frame = w.engine->editMaterial(e.object, e.emission, e.reflectance, w.update());
+                            w.edits.push_back(e);
                             changed = true;
                         },
                         [&](const Quit&) {},

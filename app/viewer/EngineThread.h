@@ -33,6 +33,10 @@ struct ObjectInfo {
     bool movable = false;
     glm::dmat4 worldFromLocal{1.0};
     Aabb bounds;
+    // Its first polygon's material now (edits included): what the panel's
+    // colour and light controls start from.
+    glm::dvec3 emission{0.0};
+    glm::dvec3 reflectance{0.0};
 };
 
 struct UpdateSample {
@@ -82,9 +86,15 @@ struct SetEpsilon {
 struct SetOverlays {
     SnapshotOverlays overlays;
 };
+// Engine::editMaterial: the object's emission and/or reflectance.
+struct EditMaterial {
+    std::string object;
+    std::optional<glm::dvec3> emission;
+    std::optional<glm::dvec3> reflectance;
+};
 struct Quit {};
 using Command = std::variant<SetTransform, SelectObject, PickObject, SetTargetFps, SetEpsilon,
-                             SetOverlays, Quit>;
+                            SetOverlays, EditMaterial, Quit>;
 
 struct EngineThreadOptions {
     double targetFps = 30.0;

@@ -7,12 +7,14 @@
 #include <backends/imgui_impl_vulkan.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -237,6 +239,8 @@ int runViewer(const ViewerOptions& options) {
         controls.showChanged = options.overlays.changedElements;
         ui::Gizmo gizmo;
         std::map<std::uint32_t, glm::dmat4> sent;  // the last transform sent per object
+        std::string controlsOf;           // the object whose colour and light the controls hold
+        std::set<std::string> emitters;   // objects seen emitting: dimmed to 0 they keep their light controls
         std::string lastMessage;
         bool leftOnScene = false, leftDragged = false;
         std::optional<std::uint32_t> gizmoPrintedFor;  // --print-gizmo: the selection last printed
@@ -311,10 +315,32 @@ int runViewer(const ViewerOptions& options) {
             if (selected) {
                 ps.selected = selected->name;
                 ps.movable = selected->movable;
+                ps.emitter = std::max({selected->emission.x, selected->emission.y, selected->emission.z}) > 0.0 || emitters.count(selected->name);
+                if (selected->emission != glm::dvec3(0.0)) emitters.insert(selected->name);  // dimmed to 0, still a light
+                // A new selection: its colour and light fill the controls.
+                if (controlsOf != selected->name) {
+                    controlsOf = selected->name;
+                    for (int k = 0; k < 3; ++k) controls.reflectance[k] = static_cast<float>(selected->reflectance[k]);
+                    const double intensity = std::max({selected->emission.x, selected->emission.y, selected->emission.z});
+                    controls.emissionIntensity = static_cast<float>(intensity);
+                    for (int k = 0; k < 3; ++k)
+                        controls.emissionColor[k] =
+                            intensity > 0.0 ? static_cast<float>(selected->emission[k] / intensity) : 1.0f;
+                }
+            } else {
+                controlsOf.clear();
             }
             ps.selectionNote = snap->selectionNote;
             ps.lastMessage = lastMessage;
             ui::PanelActions actions = ui::drawPanels(ps, controls);
+            if (selected && actions.reflectanceEdited)
+                engine.post(EditMaterial{selected->name, std::nullopt,
+                                         glm::dvec3(controls.reflectance[0], controls.reflectance[1], controls.reflectance[2])});
+            if (selected && actions.emissionEdited)
+                engine.post(EditMaterial{selected->name,
+                                         double(controls.emissionIntensity) *
+                                             glm::dvec3(controls.emissionColor[0], controls.emissionColor[1], controls.emissionColor[2]),
+                                         std::nullopt});
             if (actions.targetFpsChanged) engine.post(SetTargetFps{controls.targetFps});
             if (actions.epsilonCommitted) engine.post(SetEpsilon{controls.epsilon});
             // Keys: L and C toggle the overlays, Ctrl+Q closes the window.
