@@ -66,21 +66,29 @@ struct Engine::State {
           solver(hierarchy, links),
           updater(hierarchy, links, refiner, solver, emittedPower(scene) / totalArea(scene)) {}
 
-    // Splits the polygons into the two visibility layers around `object`.
+    // Adds `object` to the dynamic layer (the objects chosen so far) and
+    // splits the polygons into the two visibility layers around them.
     void chooseDynamic(std::optional<std::uint32_t> object) {
-        dynamic = object;
-        std::vector<std::uint32_t> staticPolygons, dynamicPolygons;
-        for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
-            (object && scene.polygons[p].object == *object ? dynamicPolygons : staticPolygons).push_back(p);
-        rays.setLayer(Layer::Static, scene, staticPolygons);
-        rays.setLayer(Layer::Dynamic, scene, dynamicPolygons);
-        if (object) {
-            const Object& o = scene.objects[*object];
-            original.assign(scene.polygons.begin() + o.firstPolygon,
-                            scene.polygons.begin() + o.firstPolygon + o.polygonCount);
-            originalWorld = o.worldFromLocal;
+        if (!object) {
+            rays.setLayer(Layer::Static, scene, allPolygons());
+            return;
         }
-        dynamicPolygonIds = std::move(dynamicPolygons);
+        dynamic = object;
+        if (chosen.count(*object)) return;
+        const Object& o = scene.objects[*object];
+        chosen[*object] = Chosen{{scene.polygons.begin() + o.firstPolygon, scene.polygons.begin() + o.firstPolygon + o.polygonCount},
+                                 o.worldFromLocal};
+        std::vector<std::uint32_t> staticPolygons;
+        dynamicPolygonIds.clear();
+        for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
+            (chosen.count(scene.polygons[p].object) ? dynamicPolygonIds : staticPolygons).push_back(p);
+        rays.setLayer(Layer::Static, scene, staticPolygons);
+        rays.setLayer(Layer::Dynamic, scene, dynamicPolygonIds);
+    }
+    std::vector<std::uint32_t> allPolygons() const {
+        std::vector<std::uint32_t> all(scene.polygons.size());
+        for (std::uint32_t p = 0; p < all.size(); ++p) all[p] = p;
+        return all;
     }
 
     Scene scene;
@@ -113,10 +121,15 @@ struct Engine::State {
     SnapshotCache meshParts;
     bool meshValid = false;
 
-    std::optional<std::uint32_t> dynamic;
+    std::optional<std::uint32_t> dynamic;  // the last chosen
+    // The dynamic layer: every object chosen so far, with its polygons and
+    // transform as chosen (moves are applied to those, not accumulated).
+    struct Chosen {
+        std::vector<Polygon> polygons;
+        glm::dmat4 world{1.0};
+    };
+    std::map<std::uint32_t, Chosen> chosen;
     std::vector<std::uint32_t> dynamicPolygonIds;
-    std::vector<Polygon> original;  // the dynamic object's polygons as chosen
-    glm::dmat4 originalWorld{1.0};
 };
 
 std::size_t defaultMemoryLimit() {
@@ -242,16 +255,22 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
     if (!object) throw std::invalid_argument("no object named '" + name + "' in " + s.scene.sourcePath);
     const ElementId cluster = s.hierarchy.objectCluster(*object);
     if (cluster == kNone) throw std::invalid_argument("object '" + name + "' in " + s.scene.sourcePath + " has no polygons to move");
-    if (s.dynamic == object) return {};
+    // Chosen before: it is in the dynamic layer already, nothing to split.
+    if (s.chosen.count(*object)) {
+        s.dynamic = object;
+        return {};
+    }
     const auto start = std::chrono::steady_clock::now();
-    const Aabb before = s.dynamic ? s.scene.objectBounds(*s.dynamic) : Aabb{};
     // The layers first: the object's new links split their visibility by them.
     s.chooseDynamic(object);
     const ReinsertionStats r = reinsertUnderRoot(s.hierarchy, s.links, s.refiner, cluster);
     s.meshValid = false;
     if (!s.solved) return {};
     const double reinsertSeconds = secondsSince(start);
-    FrameStats f = s.updater.update(before, s.scene.objectBounds(*object), s.hierarchy.range(cluster), settings, true);
+    // The links around it: their rays that it blocks move from the static
+    // part of the visibility to the dynamic one.
+    const Aabb box = s.scene.objectBounds(*object);
+    FrameStats f = s.updater.update(box, box, s.hierarchy.range(cluster), settings, true);
     f.reinsertion = r;
     f.updateSeconds += reinsertSeconds;
     f.totalSeconds += reinsertSeconds;
@@ -262,37 +281,69 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
 FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.dynamic) throw std::invalid_argument(s.scene.sourcePath + ": no dynamic object to move");
-    if (!s.solved) throw std::logic_error("moveDynamicObject before solve()");
-    const glm::dmat3 r(worldFromLocal);
-    const glm::dmat3 rtr = glm::transpose(r) * r;
-    bool rigid = std::abs(glm::determinant(r) - 1.0) < 1e-6 && worldFromLocal[0][3] == 0.0 &&
-                 worldFromLocal[1][3] == 0.0 && worldFromLocal[2][3] == 0.0 && worldFromLocal[3][3] == 1.0;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) rigid = rigid && std::abs(rtr[i][j] - (i == j ? 1.0 : 0.0)) < 1e-6;
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]);
-    if (!rigid) throw std::invalid_argument("the transform of '" + s.scene.objects[*s.dynamic].name +
-                                            "' is not a finite rigid motion (rotation and translation)");
+    return moveObjects({{s.scene.objects[*s.dynamic].name, worldFromLocal}}, settings);
+}
+
+FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dmat4>>& moves,
+                               const UpdateSettings& settings) {
+    State& s = *state_;
+    if (!s.solved) throw std::logic_error("moveObjects before solve()");
+    std::vector<std::pair<std::uint32_t, glm::dmat4>> objects;
+    for (const auto& [name, worldFromLocal] : moves) {
+        const std::optional<std::uint32_t> object = s.scene.findObject(name);
+        if (!object || s.hierarchy.objectCluster(*object) == kNone)
+            throw std::invalid_argument("no object '" + name + "' with polygons in " + s.scene.sourcePath);
+        for (const auto& [other, m] : objects)
+            if (other == *object) throw std::invalid_argument("'" + name + "' is moved twice in one frame");
+        const glm::dmat3 r(worldFromLocal);
+        const glm::dmat3 rtr = glm::transpose(r) * r;
+        bool rigid = std::abs(glm::determinant(r) - 1.0) < 1e-6 && worldFromLocal[0][3] == 0.0 &&
+                     worldFromLocal[1][3] == 0.0 && worldFromLocal[2][3] == 0.0 && worldFromLocal[3][3] == 1.0;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) rigid = rigid && std::abs(rtr[i][j] - (i == j ? 1.0 : 0.0)) < 1e-6;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]);
+        if (!rigid)
+            throw std::invalid_argument("the transform of '" + name + "' is not a finite rigid motion (rotation and translation)");
+        objects.emplace_back(*object, worldFromLocal);
+    }
+    // Objects not chosen yet join the dynamic layer first (paper sec. 3.3).
+    FrameStats chosen;
+    for (const auto& [object, m] : objects)
+        if (!s.chosen.count(object)) {
+            const FrameStats f = setDynamicObject(s.scene.objects[object].name, settings);
+            chosen.totalSeconds += f.totalSeconds;
+            chosen.updateSeconds += f.totalSeconds;
+        }
+    if (!objects.empty()) s.dynamic = objects.back().first;
 
     const auto start = std::chrono::steady_clock::now();
-    const Aabb before = s.scene.objectBounds(*s.dynamic);
-    const glm::dmat4 oldToNew = worldFromLocal * glm::inverse(s.scene.objects[*s.dynamic].worldFromLocal);
-    Object& o = s.scene.objects[*s.dynamic];
-    const glm::dmat4 delta = worldFromLocal * glm::inverse(s.originalWorld);
-    for (std::uint32_t i = 0; i < o.polygonCount; ++i) {
-        Polygon& p = s.scene.polygons[o.firstPolygon + i];
-        for (int k = 0; k < p.vertexCount; ++k) p.vertices[k] = glm::dvec3(delta * glm::dvec4(s.original[i].vertices[k], 1.0));
+    std::vector<ObjectMotion> motions;
+    std::vector<Aabb> obstacles;
+    for (const auto& [object, worldFromLocal] : objects) {
+        const Aabb before = s.scene.objectBounds(object);
+        const glm::dmat4 oldToNew = worldFromLocal * glm::inverse(s.scene.objects[object].worldFromLocal);
+        Object& o = s.scene.objects[object];
+        const State::Chosen& c = s.chosen.at(object);
+        const glm::dmat4 delta = worldFromLocal * glm::inverse(c.world);
+        for (std::uint32_t i = 0; i < o.polygonCount; ++i) {
+            Polygon& p = s.scene.polygons[o.firstPolygon + i];
+            for (int k = 0; k < p.vertexCount; ++k) p.vertices[k] = glm::dvec3(delta * glm::dvec4(c.polygons[i].vertices[k], 1.0));
+        }
+        o.worldFromLocal = worldFromLocal;
+        const ElementId cluster = s.hierarchy.objectCluster(object);
+        s.hierarchy.updateGeometry(cluster);
+        s.hierarchy.refreshAncestors(cluster);
+        for (const Aabb& box : motionObstacles(s.scene, object, before, oldToNew)) obstacles.push_back(box);
+        motions.push_back({before, s.scene.objectBounds(object), s.hierarchy.range(cluster)});
     }
-    o.worldFromLocal = worldFromLocal;
-    const ElementId cluster = s.hierarchy.objectCluster(*s.dynamic);
-    s.hierarchy.updateGeometry(cluster);
-    s.hierarchy.refreshAncestors(cluster);
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
-    s.updater.setObstacles(motionObstacles(s.scene, *s.dynamic, before, oldToNew));
+    s.updater.setObstacles(std::move(obstacles));
     const double moveSeconds = secondsSince(start);
-    FrameStats stats = s.updater.update(before, s.scene.objectBounds(*s.dynamic), s.hierarchy.range(cluster), settings);
+    FrameStats stats = s.updater.update(motions, settings);
     stats.moveSeconds = moveSeconds;
-    stats.totalSeconds += moveSeconds;
+    stats.totalSeconds += moveSeconds + chosen.totalSeconds;
+    stats.updateSeconds += chosen.updateSeconds;
     s.buildMesh(stats);
     s.budget.record(stats.spent, stats.totalSeconds);
     return stats;

@@ -33,7 +33,7 @@ void LineSpaceUpdate::recompute(LinkId id, bool full) {
     // has a cluster end and is refined (measured in office: 3,843 of the
     // 4,365 per frame), and its rays were half the link recomputes.
     const auto lazy = [&] { return l.passive && refiner_.refinesAtAnyVisibility(l); };
-    if (full || layersChanged_ || moved_.nestedWith(h_.range(l.source)) || moved_.nestedWith(h_.range(l.receiver))) {
+    if (full || layersChanged_ || movedEnd(l.source) || movedEnd(l.receiver)) {
         // An end moved: its form factor and both visibility parts change.
         const Link fresh = refiner_.computeUnoccluded(l.source, l.receiver);
         l.unoccluded = fresh.unoccluded;

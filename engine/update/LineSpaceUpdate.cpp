@@ -12,15 +12,18 @@
 
 namespace rad {
 
-FrameStats LineSpaceUpdate::update(const Aabb& oldBox, const Aabb& newBox, const IndexRange& moved,
-                                   const UpdateSettings& settings, bool layersChanged) {
+bool LineSpaceUpdate::movedEnd(ElementId e) const {
+    const IndexRange& r = h_.range(e);
+    return std::any_of(motions_.begin(), motions_.end(), [&](const ObjectMotion& m) { return m.range.nestedWith(r); });
+}
+
+FrameStats LineSpaceUpdate::update(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings,
+                                   bool layersChanged) {
     const auto start = std::chrono::steady_clock::now();
     FrameStats stats;
     setDeadline(start, settings);
     ++frame_;
-    oldBox_ = oldBox;
-    newBox_ = newBox;
-    moved_ = moved;
+    motions_ = motions;
     layersChanged_ = layersChanged;
     candidates_.clear();
     modified_.clear();

@@ -28,6 +28,15 @@ namespace rad {
 class Refiner;
 class Solver;
 
+// One object's move in a frame: its boxes before and after, and the index
+// range of its cluster (links with an end inside get new form factors and
+// static visibility too).
+struct ObjectMotion {
+    Aabb oldBox;
+    Aabb newBox;
+    IndexRange range;
+};
+
 class LineSpaceUpdate {
 public:
     LineSpaceUpdate(Hierarchy& hierarchy, LinkStore& links, Refiner& refiner, Solver& solver,
@@ -41,7 +50,13 @@ public:
     // `layersChanged`: the choice of dynamic object changed, so both parts of
     // the visibility of every link the traversal finds are recomputed.
     FrameStats update(const Aabb& oldBox, const Aabb& newBox, const IndexRange& moved,
-                      const UpdateSettings& settings, bool layersChanged = false);
+                      const UpdateSettings& settings, bool layersChanged = false) {
+        return update(std::vector<ObjectMotion>{{oldBox, newBox, moved}}, settings, layersChanged);
+    }
+    // Several objects moved in one frame: one traversal finds the links any
+    // of them touched.
+    FrameStats update(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings,
+                      bool layersChanged = false);
     // For the next update only: static geometry inside the moving object
     // (see Obstacles.h); links with both ends on it whose shafts meet one
     // are updated too.
@@ -158,9 +173,10 @@ private:
     double referenceRadiosity_;
 
     // Per frame.
-    Aabb oldBox_, newBox_;
+    std::vector<ObjectMotion> motions_;
+    // Whether an element lies in, or holds, a moving object's cluster.
+    bool movedEnd(ElementId e) const;
     std::vector<Aabb> obstacles_;
-    IndexRange moved_;
     bool layersChanged_ = false;
     std::uint32_t frame_ = 0;
     // Frame in which a link became a candidate (written by concurrent visits:

@@ -30,7 +30,7 @@ void LineSpaceUpdate::updateCandidates(FrameStats& stats, std::size_t budget) {
             // Sec. 6.2: the object entering a shaft it did not cut before makes
             // refinement there more urgent.
             const Link& l = links_[id];
-            if (!moved_.nestedWith(h_.range(l.source)) && !moved_.nestedWith(h_.range(l.receiver)) &&
+            if (!movedEnd(l.source) && !movedEnd(l.receiver) &&
                 !cutBefore(l.source, l.receiver))
                 key *= kEnteringBoost;
             heap.push({key, id});

@@ -18,36 +18,51 @@
 namespace rad {
 
 bool LineSpaceUpdate::affectedByMotion(ElementId s, ElementId r, std::size_t& tests) const {
-    // Both ends on the object: a rigid motion changes neither the form factor
-    // nor the object's occlusion of its own parts; only static geometry in
-    // the object (the obstacles) can come between them.
-    if (!layersChanged_ && moved_.contains(h_.range(s)) && moved_.contains(h_.range(r))) {
-        const Aabb& a = h_.box(s);
-        const Aabb& b = h_.box(r);
-        const auto near = [&](const Aabb& o) { return Shaft::hullMeets(a, b, o); };
-        if (obstacles_.empty()) return false;
-        ++tests;
-        if (std::none_of(obstacles_.begin(), obstacles_.end(), near)) return false;
-        const Shaft shaft(a, b);
-        return std::any_of(obstacles_.begin(), obstacles_.end(),
-                           [&](const Aabb& o) { return near(o) && shaft.intersects(o); });
-    }
-    if (moved_.nestedWith(h_.range(s)) || moved_.nestedWith(h_.range(r))) return true;
-    ++tests;
-    // The shaft is built only when tested (storing one per link would cost
-    // 256 bytes each), and only when the boxes' hull meets the object: most
-    // tested links are far from it.
     const Aabb& a = h_.box(s);
     const Aabb& b = h_.box(r);
-    if (!Shaft::hullMeets(a, b, oldBox_) && !Shaft::hullMeets(a, b, newBox_)) return false;
-    const Shaft shaft(a, b);
-    return shaft.intersects(oldBox_) || shaft.intersects(newBox_);
+    // Whether the shaft of s -> r meets a moving object's old or new box,
+    // except object `skip`. The shaft is built only when tested (storing one
+    // per link would cost 256 bytes each), and only when the boxes' hull
+    // meets a box: most tested links are far from every object.
+    const auto cut = [&](std::size_t skip) {
+        bool near = false;
+        for (std::size_t k = 0; k < motions_.size() && !near; ++k)
+            near = k != skip && (Shaft::hullMeets(a, b, motions_[k].oldBox) || Shaft::hullMeets(a, b, motions_[k].newBox));
+        if (!near) return false;
+        const Shaft shaft(a, b);
+        for (std::size_t k = 0; k < motions_.size(); ++k)
+            if (k != skip && (shaft.intersects(motions_[k].oldBox) || shaft.intersects(motions_[k].newBox))) return true;
+        return false;
+    };
+    // Both ends on one moving object: a rigid motion changes neither the form
+    // factor nor the object's occlusion of its own parts; only static
+    // geometry in the object (the obstacles) or another moving object can
+    // come between them.
+    for (std::size_t k = 0; k < motions_.size() && !layersChanged_; ++k) {
+        const ObjectMotion& m = motions_[k];
+        if (!m.range.contains(h_.range(s)) || !m.range.contains(h_.range(r))) continue;
+        if (obstacles_.empty() && motions_.size() == 1) return false;
+        ++tests;
+        const auto nearObstacle = [&](const Aabb& o) { return Shaft::hullMeets(a, b, o); };
+        if (std::any_of(obstacles_.begin(), obstacles_.end(), nearObstacle)) {
+            const Shaft shaft(a, b);
+            if (std::any_of(obstacles_.begin(), obstacles_.end(),
+                            [&](const Aabb& o) { return nearObstacle(o) && shaft.intersects(o); }))
+                return true;
+        }
+        return motions_.size() > 1 && cut(k);
+    }
+    if (movedEnd(s) || movedEnd(r)) return true;
+    ++tests;
+    return cut(motions_.size());
 }
 
 bool LineSpaceUpdate::cutBefore(ElementId s, ElementId r) const {
     const Aabb& a = h_.box(s);
     const Aabb& b = h_.box(r);
-    return Shaft::hullMeets(a, b, oldBox_) && Shaft(a, b).intersects(oldBox_);
+    return std::any_of(motions_.begin(), motions_.end(), [&](const ObjectMotion& m) {
+        return Shaft::hullMeets(a, b, m.oldBox) && Shaft(a, b).intersects(m.oldBox);
+    });
 }
 
 void LineSpaceUpdate::findModifiedLinks() {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -33,22 +34,32 @@ public:
     // computed using all links").
     const SolveStats& solve(const Progress& progress = {});
 
-    // The dynamic object: the first object marked dynamic in the scene, until
-    // another is chosen.
+    // The dynamic object (the one moveDynamicObject moves): the first object
+    // marked dynamic in the scene, until another is chosen.
     std::optional<std::uint32_t> dynamicObject() const;
-    // Chooses any object with polygons as the dynamic one. Its cluster is
-    // attached to the root if it is not there yet (see update/Reinsertion.h:
-    // only its own links and those of its former ancestor clusters change),
-    // then the visibility of the links around the old and the new dynamic
-    // object is split again by a line-space traversal, not by a re-solve.
-    // Objects marked dynamic in the file start under the root, so choosing
-    // them costs the traversal only. Throws std::invalid_argument naming the
+    // Chooses any object with polygons as the dynamic one. It joins the
+    // dynamic visibility layer, where every object chosen before stays. Its
+    // cluster is attached to the root if it is not there yet (see
+    // update/Reinsertion.h: only its own links and those of its former
+    // ancestor clusters change), then the visibility of the links around it is
+    // split again by a line-space traversal, not by a re-solve. Objects marked
+    // dynamic in the file start under the root, so choosing them costs the
+    // traversal only; choosing one chosen before costs nothing. Throws std::invalid_argument naming the
     // object when there is no such object or it has no polygons.
     FrameStats setDynamicObject(const std::string& name, const UpdateSettings& settings = {});
     // Moves the dynamic object to a rigid world transform (its transform in the
     // file is the starting one) and updates the solution incrementally.
     // Throws std::invalid_argument for a non-rigid or non-finite transform.
     FrameStats moveDynamicObject(const glm::dmat4& worldFromLocal, const UpdateSettings& settings = {});
+    // Moves several objects in one frame, each to a rigid world transform
+    // (as moveDynamicObject does one): one line-space traversal finds the
+    // links any of them touched. Every object chosen (by setDynamicObject or
+    // here) stays in the dynamic visibility layer, so moving one chosen
+    // before costs no new split of the layers; an object not chosen yet is
+    // chosen first. Throws std::invalid_argument naming the object for an
+    // unknown one, one given twice, or a non-rigid transform.
+    FrameStats moveObjects(const std::vector<std::pair<std::string, glm::dmat4>>& moves,
+                           const UpdateSettings& settings = {});
 
     // Changes the emission and/or the reflectance of one object (every
     // surface element of its polygons, and the object's own copy of its
