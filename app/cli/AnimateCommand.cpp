@@ -94,6 +94,8 @@ Report makeReport(const AnimateSettings& s, const Scene& scene, const AnimationR
             objectErrors.push_back(r.error->worstObjectRms);
         }
     }
+    Report movingObjects = Report::array();
+    for (const ObjectMove& m : s.motion.moves) movingObjects.push_back(m.object);
     Report summary{{"median_seconds", median(totals)},
                    {"worst_seconds", *std::max_element(totals.begin(), totals.end())}};
     if (s.compareFull) {
@@ -105,6 +107,7 @@ Report makeReport(const AnimateSettings& s, const Scene& scene, const AnimationR
     return {
         {"scene", s.scene},
         {"object", s.motion.object.empty() ? Report(nullptr) : Report(s.motion.object)},
+        {"moving_objects", movingObjects},
         {"frames_requested", s.motion.frames},
         {"epsilon", s.engine.epsilon},
         {"initial",
@@ -138,14 +141,14 @@ int animate(const AnimateSettings& settings) {
     ImportNotes notes;
     const Scene scene = loadGltf(s.scene, &notes);
     printWarnings(importWarnings(notes));
-    if (s.motion.script) checkScriptObjects(Script{s.motion.frames, s.motion.object, s.motion.motion, s.motion.edits}, *s.motion.script, scene);
+    if (s.motion.script) checkScriptObjects(Script{s.motion.frames, s.motion.moves, s.motion.edits}, *s.motion.script, scene);
 
     References references;
     const MotionRequest& request = s.motion;
     const AnimationRun run = runAnimation(
-        scene, s.engine, request.object, request.motion, request.edits, request.frames, s.control,
+        scene, s.engine, request.moves, request.edits, request.frames, s.control,
         s.compareFull ? &references : nullptr, [&](int f, const Engine& engine, const FrameRecord* record) {
-            if (f == 0 && !request.object.empty() && !engine.scene().objects[*engine.dynamicObject()].dynamic) {
+            if (f == 0 && !request.object.empty() && !engine.scene().objects[*engine.scene().findObject(request.object)].dynamic) {
                 const ReinsertionStats& r = record->stats.reinsertion;
                 std::printf("'%s' is not marked dynamic: its cluster was attached to the root and relinked "
                             "(%zu links removed, %zu created) in %.3f s\n",

@@ -48,18 +48,16 @@ void addFrame(FrameStats& into, const FrameStats& more) {
     into.estimatedError = more.estimatedError;
 }
 
-AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::string& objectName,
-                          const Motion& motion, const std::vector<Edit>& edits, int frames,
-                          const BudgetControlSetting& control,
+AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::vector<ObjectMove>& moves,
+                          const std::vector<Edit>& edits, int frames, const BudgetControlSetting& control,
                           References* references, const std::function<void(int, const Engine&, const FrameRecord*)>& onFrame) {
     AnimationRun run;
     Engine engine(scene, settings);
-    const bool moves = !objectName.empty();
-    std::uint32_t object = 0;
-    if (moves) {
-        const auto found = engine.scene().findObject(objectName);
-        if (!found) throw std::runtime_error(scene.sourcePath + ": no object named '" + objectName + "'");
-        object = *found;
+    std::vector<std::uint32_t> objects;
+    for (const ObjectMove& m : moves) {
+        const auto found = engine.scene().findObject(m.object);
+        if (!found) throw std::runtime_error(scene.sourcePath + ": no object named '" + m.object + "'");
+        objects.push_back(*found);
     }
     // Where each edit starts: the object's values in the file.
     std::vector<Material> startOf;
@@ -76,17 +74,22 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
     run.solveSeconds = secondsSince(start);
     run.initial = engine.stats();
     if (!run.initial.converged) throw std::runtime_error("the initial solve did not converge: " + run.initial.message);
-    glm::dmat4 startTransform(1.0);
-    glm::dvec3 center(0.0);
-    if (moves) {
-        run.markedDynamic = engine.scene().objects[object].dynamic;
+    // Each moving object chosen (the first is the run's selection), and
+    // where its motion starts.
+    std::vector<glm::dmat4> startTransform;
+    std::vector<glm::dvec3> center;
+    for (std::size_t k = 0; k < moves.size(); ++k) {
         try {
-            run.selection = engine.setDynamicObject(objectName);
+            const FrameStats chosen = engine.setDynamicObject(moves[k].object);
+            if (k == 0) {
+                run.markedDynamic = engine.scene().objects[objects[k]].dynamic;
+                run.selection = chosen;
+            }
         } catch (const std::invalid_argument& e) {
             throw std::runtime_error(e.what());
         }
-        startTransform = engine.scene().objects[object].worldFromLocal;
-        center = engine.scene().objectBounds(object).center();
+        startTransform.push_back(engine.scene().objects[objects[k]].worldFromLocal);
+        center.push_back(engine.scene().objectBounds(objects[k]).center());
     }
     if (onFrame) {
         FrameRecord chosen;
@@ -103,7 +106,12 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
             update.budget = engine.budgetFor(*record.targetSeconds);
         }
         const double t = double(f) / frames;
-        if (moves) record.stats = engine.moveDynamicObject(motion.at(t, center, startTransform), update);
+        if (!moves.empty()) {
+            std::vector<std::pair<std::string, glm::dmat4>> frame;
+            for (std::size_t k = 0; k < moves.size(); ++k)
+                frame.emplace_back(moves[k].object, moves[k].motion.at(t, center[k], startTransform[k]));
+            record.stats = engine.moveObjects(frame, update);
+        }
         for (std::size_t k = 0; k < edits.size(); ++k) {
             const Edit& e = edits[k];
             std::optional<glm::dvec3> emission, reflectance;
@@ -118,7 +126,7 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
                 throw std::runtime_error(error.what());
             }
         }
-        if (!moves) record.stats.budget = update.budget.value_or(kUnlimited);
+        if (moves.empty()) record.stats.budget = update.budget.value_or(kUnlimited);
         if (references) {
             if (references->samples.size() < std::size_t(f)) {
                 const auto t = std::chrono::steady_clock::now();

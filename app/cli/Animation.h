@@ -24,6 +24,12 @@ struct Motion {
     glm::dmat4 at(double f, const glm::dvec3& center, const glm::dmat4& start) const;
 };
 
+// One object's total motion.
+struct ObjectMove {
+    std::string object;
+    Motion motion;
+};
+
 // A script's edit of one object's light or colour (Engine::editMaterial):
 // each given value goes linearly, over the frames, from the object's value in
 // the file (its first polygon's material) to this one.
@@ -71,15 +77,16 @@ struct References {
     std::vector<double> convergedSeconds;
 };
 
-// Solves `scene`, chooses `object` as the dynamic object and plays the motion
-// (none when `object` is empty), and the edits, each frame its share of each.
+// Solves `scene`, chooses the moving objects (the first is the report's
+// `selection`) and plays their motions and the edits, each frame its share
+// of each; every frame moves all the objects at once (Engine::moveObjects).
 // With `references` (empty on the first call, filled by it) every frame is
 // compared with a from-scratch solve, and with its converged reference when
 // one is asked for. `onFrame` sees the engine after each
 // frame, with its record (frame 0: the initial solution, with the choice of
 // the object as its record). Throws on bad input.
-AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::string& object,
-                          const Motion& motion, const std::vector<Edit>& edits, int frames,
+AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::vector<ObjectMove>& moves,
+                          const std::vector<Edit>& edits, int frames,
                           const BudgetControlSetting& control,
                           References* references, const std::function<void(int, const Engine&, const FrameRecord*)>& onFrame = {});
 

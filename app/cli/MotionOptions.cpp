@@ -49,16 +49,17 @@ void addMotionOptions(CLI::App& command, MotionRequest& request) {
 void resolveMotion(MotionRequest& request) {
     if (request.script) {
         Script script = readScript(*request.script);
-        request.object = script.object;
         request.frames = script.frames;
-        request.motion = script.motion;
+        request.moves = std::move(script.moves);
         request.edits = std::move(script.edits);
+        request.object = request.moves.empty() ? std::string() : request.moves.front().object;
         return;
     }
     if (request.object.empty() || request.frames == 0)
         throw UsageError("needs --object NAME and --frames N, or --script MOVES.json");
     if (request.motionOptions == 0)
         throw UsageError("needs a motion: --translate X,Y,Z and/or --rotate AX,AY,AZ,DEG");
+    request.moves = {ObjectMove{request.object, request.motion}};
 }
 
 std::optional<std::size_t> parseBudget(const std::string& text) {

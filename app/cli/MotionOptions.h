@@ -14,10 +14,13 @@
 namespace rad::cli {
 
 struct MotionRequest {
-    std::string object;  // empty: nothing moves (a script of edits only)
+    std::string object;  // --object
     int frames = 0;
-    Motion motion;
-    std::vector<Edit> edits;  // from a script
+    Motion motion;       // --translate, --rotate
+    // After resolveMotion: what moves (the --object, or the script's moving
+    // objects; none for a script of edits only) and the script's edits.
+    std::vector<ObjectMove> moves;
+    std::vector<Edit> edits;
     int motionOptions = 0;  // --translate and --rotate given: at least one is needed
     std::optional<std::string> script;
 };

@@ -29,6 +29,13 @@ std::vector<double> numbers(const Json& action, const char* key, std::size_t cou
     return out;
 }
 
+ObjectMove& moveOf(Script& script, const std::string& object) {
+    for (ObjectMove& m : script.moves)
+        if (m.object == object) return m;
+    script.moves.push_back(ObjectMove{object, {}});
+    return script.moves.back();
+}
+
 Edit& editOf(Script& script, const std::string& object) {
     for (Edit& e : script.edits)
         if (e.object == object) return e;
@@ -69,22 +76,16 @@ Script readScript(const std::string& path) {
         for (const auto& [key, value] : a.items())
             if (key != "object" && key != "translate" && key != "rotate" && key != "emission" && key != "reflectance")
                 throw UsageError(where + ": unknown key '" + key + "' (translate, rotate, emission, reflectance)");
-        if (a.contains("translate") || a.contains("rotate")) {
-            if (!script.object.empty() && script.object != object)
-                throw UsageError(where + ": moves '" + object + "' while an earlier action moves '" + script.object +
-                                 "'; one object moves per script in this version");
-            script.object = object;
-        }
         if (a.contains("translate")) {
             const auto v = numbers(a, "translate", 3, where);
-            script.motion.translation += glm::dvec3(v[0], v[1], v[2]);
+            moveOf(script, object).motion.translation += glm::dvec3(v[0], v[1], v[2]);
             ++done;
         }
         if (a.contains("rotate")) {
             const auto v = numbers(a, "rotate", 4, where);
             const glm::dvec3 axis(v[0], v[1], v[2]);
             if (!(glm::length(axis) > 0.0)) throw UsageError(where + ": the rotation axis must not be zero");
-            script.motion.rotations.push_back({glm::normalize(axis), v[3]});
+            moveOf(script, object).motion.rotations.push_back({glm::normalize(axis), v[3]});
             ++done;
         }
         if (a.contains("emission")) {
@@ -112,7 +113,7 @@ void checkScriptObjects(const Script& script, const std::string& path, const Sce
         if (!o || scene.objects[*o].polygonCount == 0)
             throw UsageError(path + ": no object '" + name + "' with polygons in " + scene.sourcePath);
     };
-    if (!script.object.empty()) check(script.object);
+    for (const ObjectMove& m : script.moves) check(m.object);
     for (const Edit& e : script.edits) check(e.object);
 }
 

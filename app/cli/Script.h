@@ -20,17 +20,15 @@ namespace rad::cli {
 
 struct Script {
     int frames = 0;
-    std::string object;  // the one that moves; empty when nothing moves
-    Motion motion;
-    std::vector<Edit> edits;  // one per object edited
+    std::vector<ObjectMove> moves;  // one per moving object, in the order first named
+    std::vector<Edit> edits;        // one per object edited
 };
 
 // Reads and checks a script. Throws UsageError (one line: the file, the
 // action by number and object, what is wrong) for a missing or malformed
 // file, a wrong number of values, a reflectance outside [0, 1], a negative
 // or non-finite emission, a zero rotation axis, an action with nothing to
-// do, frames outside 1..100000, or moves of more than one object (one
-// object moves at a time in this version).
+// do, or frames outside 1..100000.
 Script readScript(const std::string& path);
 
 // Throws UsageError naming the action's object when the scene has no object

@@ -100,7 +100,7 @@ int sweep(const SweepSettings& settingsGiven) {
     ImportNotes notes;
     const Scene scene = loadGltf(scenePath, &notes);
     printWarnings(importWarnings(notes));
-    if (request.script) checkScriptObjects(Script{request.frames, request.object, request.motion, request.edits}, *request.script, scene);
+    if (request.script) checkScriptObjects(Script{request.frames, request.moves, request.edits}, *request.script, scene);
     std::filesystem::create_directories(out);
 
     References references;  // the from-scratch solves, shared by every run
@@ -111,7 +111,7 @@ int sweep(const SweepSettings& settingsGiven) {
         std::fprintf(stderr, "sweep: %s %s\n", row.kind.c_str(),
                      row.kind == "budget" ? budgetText(row.budget).c_str() : std::to_string(*row.targetFps).c_str());
         const AnimationRun run =
-            runAnimation(scene, settings, request.object, request.motion, request.edits, request.frames, control,
+            runAnimation(scene, settings, request.moves, request.edits, request.frames, control,
                          &references);
         if (rows.empty()) printWarnings(run.initial.warnings);  // every run solves the same: say it once
         std::vector<double> seconds, rms, objectRms, spent, budget, estimated, rmsReference;
