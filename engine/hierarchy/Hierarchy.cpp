@@ -425,7 +425,13 @@ void Hierarchy::updateGeometry(ElementId id) {
         for (int i = 0; i < e.patch.n; ++i) box.extend(e.patch.v[i]);
         e.center = patchCentroid(e.patch);
     }
-    for (ElementId c : e.children) updateGeometry(c);
+    // The subtrees are disjoint: a moved object's clusters, whose
+    // orientation is rebuilt, on all cores.
+    const std::vector<ElementId>& children = e.children;
+    if (!e.isSurface() && children.size() > 1)
+        tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) { updateGeometry(children[i]); });
+    else
+        for (ElementId c : children) updateGeometry(c);
     if (!elements_[id].isSurface()) finishCluster(id);
 }
 
