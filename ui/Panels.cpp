@@ -112,8 +112,15 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
             a.emissionEdited |= ImGui::IsItemDeactivatedAfterEdit();
         }
     }
+    if (!s.movableObjects.empty() && ImGui::TreeNode("objects that can move")) {
+        ImGui::BeginChild("##objects", ImVec2(0.0f, 8.0f * ImGui::GetTextLineHeightWithSpacing()), true);
+        for (const std::string& name : s.movableObjects)
+            if (ImGui::Selectable(name.c_str(), name == s.selected)) a.select = name;
+        ImGui::EndChild();
+        ImGui::TreePop();
+    }
     ImGui::TextDisabled("left drag: orbit   right drag: pan");
-    ImGui::TextDisabled("wheel: zoom   Ctrl+Q: quit");
+    ImGui::TextDisabled("wheel: zoom   Ctrl+Z / Ctrl+Shift+Z: undo / redo   Ctrl+Q: quit");
 
     ImGui::Separator();
     a.saveScreenshot = ImGui::Button("Save screenshot");

@@ -4,6 +4,7 @@
 // and reports what the user asked for in PanelActions.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,8 @@ struct PanelState {
     std::string selectionNote;
     // The selected object emits (its controls show colour and intensity).
     bool emitter = false;
+    // Every object that can move (has polygons), for the list.
+    std::vector<std::string> movableObjects;
 
     std::string lastMessage;  // "saved x.png", errors from the buttons
 };
@@ -62,6 +65,7 @@ struct PanelActions {
     bool exportMesh = false;
     bool reflectanceEdited = false;  // on release of the control
     bool emissionEdited = false;
+    std::optional<std::string> select;  // an object chosen in the list
 };
 
 // Draws the panel window at the top left.

@@ -31,6 +31,7 @@
 #include "ui/Panels.h"
 #include "viewer/EngineThread.h"
 #include "viewer/OrbitCamera.h"
+#include "viewer/UndoHistory.h"
 #include "viewer/ViewerOptions.h"
 
 namespace rad::viewer {
@@ -41,7 +42,7 @@ constexpr const char* kNoDisplay =
     "(radiosity-cli --help)";
 
 struct KeyEvents {
-    bool toggleLinks = false, toggleChanged = false, quit = false;
+    bool toggleLinks = false, toggleChanged = false, quit = false, undo = false, redo = false;
 };
 
 struct GlfwSession {
@@ -140,6 +141,7 @@ int runViewer(const ViewerOptions& options) {
         if (key == GLFW_KEY_L) k->toggleLinks = true;
         if (key == GLFW_KEY_C) k->toggleChanged = true;
         if (key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL)) k->quit = true;
+        if (key == GLFW_KEY_Z && (mods & GLFW_MOD_CONTROL)) ((mods & GLFW_MOD_SHIFT) ? k->redo : k->undo) = true;
     });
 
     // Vulkan: instance with the surface extensions, a device that presents.
@@ -240,6 +242,8 @@ int runViewer(const ViewerOptions& options) {
         ui::Gizmo gizmo;
         std::map<std::uint32_t, glm::dmat4> sent;  // the last transform sent per object
         std::string controlsOf;           // the object whose colour and light the controls hold
+        UndoHistory history;
+        std::optional<std::pair<std::uint32_t, glm::dmat4>> dragFrom;  // a gizmo drag under way: where it began
         std::set<std::string> emitters;   // objects seen emitting: dimmed to 0 they keep their light controls
         std::string lastMessage;
         bool leftOnScene = false, leftDragged = false;
@@ -330,17 +334,27 @@ int runViewer(const ViewerOptions& options) {
             } else {
                 controlsOf.clear();
             }
+            for (const ObjectInfo& o : snap->objects)
+                if (o.movable) ps.movableObjects.push_back(o.name);
             ps.selectionNote = snap->selectionNote;
             ps.lastMessage = lastMessage;
             ui::PanelActions actions = ui::drawPanels(ps, controls);
+            // An edit, with the command that takes it back.
+            const auto edit = [&](const EditMaterial& e, const EditMaterial& before) {
+                engine.post(e);
+                history.record(Command(std::in_place_type<EditMaterial>, before), Command(std::in_place_type<EditMaterial>, e));
+            };
             if (selected && actions.reflectanceEdited)
-                engine.post(EditMaterial{selected->name, std::nullopt,
-                                         glm::dvec3(controls.reflectance[0], controls.reflectance[1], controls.reflectance[2])});
+                edit(EditMaterial{selected->name, std::nullopt,
+                                  glm::dvec3(controls.reflectance[0], controls.reflectance[1], controls.reflectance[2])},
+                     EditMaterial{selected->name, std::nullopt, selected->reflectance});
             if (selected && actions.emissionEdited)
-                engine.post(EditMaterial{selected->name,
-                                         double(controls.emissionIntensity) *
-                                             glm::dvec3(controls.emissionColor[0], controls.emissionColor[1], controls.emissionColor[2]),
-                                         std::nullopt});
+                edit(EditMaterial{selected->name,
+                                  double(controls.emissionIntensity) *
+                                      glm::dvec3(controls.emissionColor[0], controls.emissionColor[1], controls.emissionColor[2]),
+                                  std::nullopt},
+                     EditMaterial{selected->name, selected->emission, std::nullopt});
+            if (actions.select) engine.post(SelectObject{*actions.select});
             if (actions.targetFpsChanged) engine.post(SetTargetFps{controls.targetFps});
             if (actions.epsilonCommitted) engine.post(SetEpsilon{controls.epsilon});
             // Keys: L and C toggle the overlays, Ctrl+Q closes the window.
@@ -350,6 +364,14 @@ int runViewer(const ViewerOptions& options) {
                 actions.overlaysChanged |= keys.toggleLinks || keys.toggleChanged;
                 if (keys.quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
             }
+            // Ctrl+Z, Ctrl+Shift+Z: post what takes the last action back (or
+            // does it again); the gizmo and the colour controls follow.
+            if (!io.WantCaptureKeyboard && (keys.undo || keys.redo) && !gizmo.dragging())
+                if (const std::optional<Command> c = keys.undo ? history.undo() : history.redo()) {
+                    if (const auto* t = std::get_if<SetTransform>(&*c)) sent[t->object] = t->worldFromLocal;
+                    engine.post(*c);
+                    controlsOf.clear();
+                }
             keys = KeyEvents{};
             if (actions.overlaysChanged) engine.post(SetOverlays{{controls.showLinks, controls.showChanged}});
 
@@ -369,11 +391,21 @@ int runViewer(const ViewerOptions& options) {
                     center = glm::dvec3(it->second * glm::inverse(current) * glm::dvec4(center, 1.0));
                     current = it->second;
                 }
+                const bool wasDragging = gizmo.dragging();
                 if (const auto moved = gizmo.update(gv, center, current)) {
                     if (sent.find(id) == sent.end() || sent[id] != *moved) {
                         sent[id] = *moved;
                         engine.post(SetTransform{id, *moved});
                     }
+                }
+                // A drag is one step of the undo history, from where it began.
+                if (!wasDragging && gizmo.dragging()) dragFrom = std::pair{id, current};
+                if (wasDragging && !gizmo.dragging() && dragFrom) {
+                    const auto [object, from] = *dragFrom;
+                    if (sent.count(object) && sent[object] != from)
+                        history.record(Command(std::in_place_type<SetTransform>, SetTransform{object, from}),
+                                       Command(std::in_place_type<SetTransform>, SetTransform{object, sent[object]}));
+                    dragFrom.reset();
                 }
                 if (options.printGizmo && gizmoPrintedFor != id && !snap->solving) {
                     if (const auto h = ui::Gizmo::handlePosition(gv, center, ui::GizmoPart::AxisX)) {

@@ -3,7 +3,7 @@
 # block's (preselected), or with PICK the gizmo of the object PICK after
 # clicking on it (any object can be picked and moved).
 # Run inside one xvfb-run session: drag_gizmo.sh VIEWER SCENE OUTDIR [PICK]
-# Writes OUTDIR/{viewer.log,before.png,after.png,overlays.png} and prints
+# Writes OUTDIR/{viewer.log,before.png,after.png,undone.png,redone.png,overlays.png} and prints
 # "viewer-exit N" last.
 set -u
 viewer=$1 scene=$2 out=$3 pick=${4:-}
@@ -58,6 +58,14 @@ xdotool mousemove 1100 60   # off the block and the panel
 # stale or coarse (seconds under the sanitizers).
 sleep 5
 shot "$out/after.png"
+
+# Ctrl+Z takes the drag back, Ctrl+Shift+Z does it again.
+xdotool key ctrl+z
+sleep 5
+shot "$out/undone.png"
+xdotool key ctrl+shift+z
+sleep 5
+shot "$out/redone.png"
 
 xdotool key l
 xdotool key c

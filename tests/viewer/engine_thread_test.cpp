@@ -6,9 +6,12 @@
 
 #include <optional>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "radiosity/Gltf.h"
 #include "support/TestScenes.h"
 #include "viewer/EngineThread.h"
+#include "viewer/UndoHistory.h"
 
 namespace rad {
 namespace {
@@ -66,6 +69,47 @@ TEST(EngineThread, LightAndColourEditsReachTheSnapshot) {
     thread.post(EditMaterial{"back-wall", std::nullopt, glm::dvec3(0.2, 1.5, 0.3)});
     const auto refused = waitFor(thread, [](const ViewerSnapshot& s) { return !s.selectionNote.empty(); });
     EXPECT_NE(refused->selectionNote.find("reflectance"), std::string::npos) << refused->selectionNote;
+}
+
+// The viewer's undo history (Ctrl+Z, Ctrl+Shift+Z) over the engine thread:
+// a move and an edit taken back in turn return the object and the picture
+// to where they were, and redone they come back.
+TEST(EngineThread, UndoAndRedoAMoveAndAnEdit) {
+    EngineSettings settings;
+    settings.epsilon = 1e-3;
+    EngineThread thread(loadGltf(test::kCornell), settings);
+    const auto solved = waitFor(thread, [](const ViewerSnapshot& s) { return !s.solving && s.mesh; });
+    ASSERT_TRUE(solved->error.empty()) << solved->error;
+    std::uint32_t block = 0;
+    while (solved->objects[block].name != "short-block") ++block;
+    const glm::dmat4 start = solved->objects[block].worldFromLocal;
+    const glm::dmat4 moved = glm::translate(glm::dmat4(1.0), glm::dvec3(0.1, 0.0, 0.05)) * start;
+    const glm::dvec3 wall = objectNamed(*solved, "back-wall").reflectance;
+    const double before = meanColor(*solved->mesh);
+
+    viewer::UndoHistory history;
+    const auto act = [&](const viewer::Command& undo, const viewer::Command& redo) {
+        thread.post(redo);
+        history.record(undo, redo);
+    };
+    act(viewer::SetTransform{block, start}, viewer::SetTransform{block, moved});
+    act(EditMaterial{"back-wall", std::nullopt, wall}, EditMaterial{"back-wall", std::nullopt, glm::dvec3(0.1, 0.6, 0.2)});
+    waitFor(thread, [&](const ViewerSnapshot& s) { return objectNamed(s, "back-wall").reflectance != wall; });
+
+    for (int i = 0; i < 2; ++i) thread.post(*history.undo());
+    EXPECT_FALSE(history.undo()) << "two steps, both undone";
+    const auto undone = waitFor(thread, [&](const ViewerSnapshot& s) {
+        return objectNamed(s, "back-wall").reflectance == wall && s.objects[block].worldFromLocal == start &&
+               s.frame.pending + s.frame.stale == 0;
+    });
+    EXPECT_EQ(undone->objects[block].worldFromLocal, start);
+    EXPECT_EQ(objectNamed(*undone, "back-wall").reflectance, wall);
+    EXPECT_NEAR(meanColor(*undone->mesh) / before, 1.0, 0.01);
+
+    thread.post(*history.redo());
+    const auto redone = waitFor(thread, [&](const ViewerSnapshot& s) { return s.objects[block].worldFromLocal == moved; });
+    EXPECT_EQ(redone->objects[block].worldFromLocal, moved);
+    EXPECT_EQ(objectNamed(*redone, "back-wall").reflectance, wall) << "only the move is redone";
 }
 
 }  // namespace

@@ -250,6 +250,14 @@ TEST(ViewerTest, DraggingTheGizmoMovesTheBlockAndItsShadow) {
     // The back wall high up, far from the block, stays as it was.
     EXPECT_LT(meanAbsDifference(before, after, 700, 150, 800, 250), 1.0);
 
+    // Ctrl+Z put the block back, shadow and all; Ctrl+Shift+Z moved it again.
+    const Picture undone = readPicture((dir / "undone.png").string());
+    const Picture redone = readPicture((dir / "redone.png").string());
+    ASSERT_EQ(undone.width, before.width);
+    ASSERT_EQ(redone.width, before.width);
+    EXPECT_LT(meanAbsDifference(before, undone, 815, 690, 900, 735), 1.0);
+    EXPECT_LT(meanAbsDifference(after, redone, 815, 690, 900, 735), 1.0);
+
     // L and C turned on the overlays: yellow links (linear 1, 0.85, 0.1) and
     // red changed elements (linear 1, 0.1, 0.1), sRGB-encoded on screen.
     auto yellow = [](const unsigned char* c) { return c[0] > 220 && c[1] > 200 && c[2] < 130; };
