@@ -97,9 +97,10 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
 
     ImGui::Separator();
     if (s.selected.empty())
-        ImGui::TextWrapped("Click an object to select it; drag the gizmo to move it.");
+        ImGui::TextWrapped("Click an object to select it (shift+click: several); drag the gizmo to move it.");
     else
         ImGui::Text("selected: %s%s", s.selected.c_str(), s.movable ? "" : " (fixed)");
+    if (s.selectionCount > 1) ImGui::Text("and %zu more (shift+click adds or removes)", s.selectionCount - 1);
     if (!s.selectionNote.empty()) ImGui::TextWrapped("%s", s.selectionNote.c_str());
     if (!s.selected.empty() && s.movable) {
         // Applied when released: each edit updates the whole solution.

@@ -32,6 +32,7 @@ struct PanelState {
 
     // Selection.
     std::string selected;  // empty: nothing selected
+    std::size_t selectionCount = 0;  // shift+click selects several; the gizmo moves them together
     bool movable = false;
     std::string selectionNote;
     // The selected object emits (its controls show colour and intensity).

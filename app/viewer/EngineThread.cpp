@@ -1,5 +1,6 @@
 #include "viewer/EngineThread.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -46,6 +47,7 @@ struct EngineThread::Worker {
     double targetFps = 30.0;
     SnapshotOverlays overlays;
     std::optional<std::uint32_t> selected;
+    std::vector<std::uint32_t> selection;
     std::string selectionNote;
     std::map<std::uint32_t, glm::dmat4> moved;  // transforms applied, to re-apply after a re-solve
     std::vector<EditMaterial> edits;            // likewise, in order
@@ -136,6 +138,7 @@ void EngineThread::run() {
         s->epsilon = w.settings.epsilon;
         s->overlays = w.overlays;
         s->selected = w.selected;
+        s->selection = w.selection;
         s->selectionNote = w.selectionNote;
         s->updateTimes.assign(w.history.begin(), w.history.end());
         const Scene& scene = w.engine ? w.engine->scene() : w.original;
@@ -170,11 +173,21 @@ void EngineThread::run() {
         publish(false);
     };
 
-    auto select = [&](std::optional<std::uint32_t> object) {
+    // `add` (shift+click): the object joins the selection, or leaves it if
+    // it was in; otherwise it is the whole selection.
+    auto select = [&](std::optional<std::uint32_t> object, bool add = false) {
+        const bool wasIn = object && std::find(w.selection.begin(), w.selection.end(), *object) != w.selection.end();
+        if (!add) w.selection.clear();
+        if (add && wasIn) {
+            std::erase(w.selection, *object);
+            w.selected = w.selection.empty() ? std::nullopt : std::optional(w.selection.back());
+            return;
+        }
         w.selected = object;
         w.selectionNote.clear();
         if (!object) return;
         const Object& o = w.engine->scene().objects[*object];
+        if (o.polygonCount > 0 && !wasIn) w.selection.push_back(*object);
         if (o.polygonCount == 0) {
             w.selectionNote = quoted(o.name, " has no polygons: it cannot be moved");
             return;
@@ -204,6 +217,7 @@ void EngineThread::run() {
                 publish(false);
             });
             const auto current = w.selected;
+            const std::vector<std::uint32_t> selection = w.selection;
             for (const auto& [object, m] : w.moved) {
                 w.engine->setDynamicObject(w.engine->scene().objects[object].name);
                 w.frame = w.engine->moveDynamicObject(m);
@@ -211,7 +225,10 @@ void EngineThread::run() {
             for (const EditMaterial& e : w.edits) w.frame = w.engine->editMaterial(e.object, e.emission, e.reflectance);
             w.solving = false;
             w.progress = w.engine->stats().converged ? "solved" : w.engine->stats().message;
-            select(current);
+            w.selection.clear();
+            for (std::uint32_t o : selection) select(o, true);
+            if (selection.empty()) select(current);
+            w.selected = current;  // the gizmo's object again
             return true;
         } catch (const Cancelled&) {
             return false;
@@ -313,7 +330,38 @@ void EngineThread::run() {
                             changed = true;
                         },
                         [&](const PickObject& p) {
-                            select(w.engine->pick(p.origin, p.direction));
+                            const auto picked = w.engine->pick(p.origin, p.direction);
+                            if (!p.add || picked) select(picked, p.add);
+                            changed = true;
+                        },
+                        [&](const SetTransforms& t) {
+                            // Consecutive moves of the same objects: only the newest counts.
+                            if (i + 1 < commands.size())
+                                if (const auto* next = std::get_if<SetTransforms>(&commands[i + 1]);
+                                    next && next->moves.size() == t.moves.size() &&
+                                    std::equal(t.moves.begin(), t.moves.end(), next->moves.begin(),
+                                               [](const SetTransform& a, const SetTransform& b) { return a.object == b.object; }))
+                                    return;
+                            const Scene& scene = w.engine->scene();
+                            std::vector<std::pair<std::string, glm::dmat4>> moves;
+                            for (const SetTransform& m : t.moves) {
+                                if (m.object >= scene.objects.size() || scene.objects[m.object].polygonCount == 0) continue;
+                                if (w.options.log) {
+                                    std::ostringstream line;
+                                    line << "engine: transform " << scene.objects[m.object].name << " translation "
+                                         << m.worldFromLocal[3][0] << ' ' << m.worldFromLocal[3][1] << ' '
+                                         << m.worldFromLocal[3][2];
+                                    w.options.log(line.str());
+                                }
+                                moves.emplace_back(scene.objects[m.object].name, m.worldFromLocal);
+                            }
+                            if (moves.empty()) return;
+                            w.frame = w.engine->moveObjects(moves, w.update());
+                            for (const SetTransform& m : t.moves) w.moved[m.object] = m.worldFromLocal;
+                            ++w.moves;
+                            w.history.push_back({w.now(), w.frame.totalSeconds});
+                            while (!w.history.empty() && w.history.front().time < w.now() - w.options.historySeconds)
+                                w.history.pop_front();
                             changed = true;
                         },
                         [&](const SetTargetFps& f) {

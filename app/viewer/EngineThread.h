@@ -60,7 +60,9 @@ struct ViewerSnapshot {
     std::size_t linkCount = 0;
     SnapshotOverlays overlays;
     std::vector<ObjectInfo> objects;
-    std::optional<std::uint32_t> selected;
+    std::optional<std::uint32_t> selected;  // the object last clicked: the gizmo's
+    // Every object selected (shift+click adds one); the gizmo moves them together.
+    std::vector<std::uint32_t> selection;
     std::string selectionNote;  // e.g. why the selection cannot move
     std::vector<UpdateSample> updateTimes;  // moves of the last seconds, oldest first
 };
@@ -76,6 +78,11 @@ struct SelectObject {
 struct PickObject {
     glm::dvec3 origin{0.0};
     glm::dvec3 direction{0.0, 0.0, -1.0};
+    bool add = false;  // shift+click: add to the selection (again: take it out)
+};
+// Several objects moved in one frame (Engine::moveObjects).
+struct SetTransforms {
+    std::vector<SetTransform> moves;
 };
 struct SetTargetFps {
     double fps = 30.0;
@@ -93,7 +100,7 @@ struct EditMaterial {
     std::optional<glm::dvec3> reflectance;
 };
 struct Quit {};
-using Command = std::variant<SetTransform, SelectObject, PickObject, SetTargetFps, SetEpsilon,
+using Command = std::variant<SetTransform, SetTransforms, SelectObject, PickObject, SetTargetFps, SetEpsilon,
                             SetOverlays, EditMaterial, Quit>;
 
 struct EngineThreadOptions {

@@ -243,7 +243,7 @@ int runViewer(const ViewerOptions& options) {
         std::map<std::uint32_t, glm::dmat4> sent;  // the last transform sent per object
         std::string controlsOf;           // the object whose colour and light the controls hold
         UndoHistory history;
-        std::optional<std::pair<std::uint32_t, glm::dmat4>> dragFrom;  // a gizmo drag under way: where it began
+        std::vector<std::pair<std::uint32_t, glm::dmat4>> dragFrom;  // a gizmo drag: where the selection began
         std::set<std::string> emitters;   // objects seen emitting: dimmed to 0 they keep their light controls
         std::string lastMessage;
         bool leftOnScene = false, leftDragged = false;
@@ -336,6 +336,7 @@ int runViewer(const ViewerOptions& options) {
             }
             for (const ObjectInfo& o : snap->objects)
                 if (o.movable) ps.movableObjects.push_back(o.name);
+            ps.selectionCount = snap->selection.size();
             ps.selectionNote = snap->selectionNote;
             ps.lastMessage = lastMessage;
             ui::PanelActions actions = ui::drawPanels(ps, controls);
@@ -369,6 +370,8 @@ int runViewer(const ViewerOptions& options) {
             if (!io.WantCaptureKeyboard && (keys.undo || keys.redo) && !gizmo.dragging())
                 if (const std::optional<Command> c = keys.undo ? history.undo() : history.redo()) {
                     if (const auto* t = std::get_if<SetTransform>(&*c)) sent[t->object] = t->worldFromLocal;
+                    if (const auto* t = std::get_if<SetTransforms>(&*c))
+                        for (const SetTransform& m : t->moves) sent[m.object] = m.worldFromLocal;
                     engine.post(*c);
                     controlsOf.clear();
                 }
@@ -391,21 +394,52 @@ int runViewer(const ViewerOptions& options) {
                     center = glm::dvec3(it->second * glm::inverse(current) * glm::dvec4(center, 1.0));
                     current = it->second;
                 }
+                // Where each selected object stands now (what was last sent
+                // for it, the engine may lag behind).
+                const auto transformOf = [&](std::uint32_t o) {
+                    const auto it = sent.find(o);
+                    return it != sent.end() ? it->second : snap->objects[o].worldFromLocal;
+                };
+                std::vector<std::uint32_t> group{id};  // the gizmo's object first
+                for (std::uint32_t o : snap->selection)
+                    if (o != id && o < snap->objects.size() && snap->objects[o].movable) group.push_back(o);
                 const bool wasDragging = gizmo.dragging();
+                if (!wasDragging) {
+                    dragFrom.clear();
+                    for (std::uint32_t o : group) dragFrom.push_back({o, transformOf(o)});
+                }
                 if (const auto moved = gizmo.update(gv, center, current)) {
                     if (sent.find(id) == sent.end() || sent[id] != *moved) {
-                        sent[id] = *moved;
-                        engine.post(SetTransform{id, *moved});
+                        // The same world motion for the whole selection.
+                        const glm::dmat4 delta = *moved * glm::inverse(current);
+                        SetTransforms moves;
+                        for (std::uint32_t o : group) {
+                            const glm::dmat4 m = o == id ? *moved : delta * transformOf(o);
+                            moves.moves.push_back({o, m});
+                        }
+                        for (const SetTransform& m : moves.moves) sent[m.object] = m.worldFromLocal;
+                        if (moves.moves.size() == 1)
+                            engine.post(moves.moves.front());
+                        else
+                            engine.post(std::move(moves));
                     }
                 }
                 // A drag is one step of the undo history, from where it began.
-                if (!wasDragging && gizmo.dragging()) dragFrom = std::pair{id, current};
-                if (wasDragging && !gizmo.dragging() && dragFrom) {
-                    const auto [object, from] = *dragFrom;
-                    if (sent.count(object) && sent[object] != from)
-                        history.record(Command(std::in_place_type<SetTransform>, SetTransform{object, from}),
-                                       Command(std::in_place_type<SetTransform>, SetTransform{object, sent[object]}));
-                    dragFrom.reset();
+                if (wasDragging && !gizmo.dragging() && !dragFrom.empty()) {
+                    SetTransforms back, again;
+                    for (const auto& [o, from] : dragFrom) {
+                        back.moves.push_back({o, from});
+                        again.moves.push_back({o, transformOf(o)});
+                    }
+                    if (again.moves.front().worldFromLocal != back.moves.front().worldFromLocal) {
+                        if (back.moves.size() == 1)
+                            history.record(Command(std::in_place_type<SetTransform>, back.moves.front()),
+                                           Command(std::in_place_type<SetTransform>, again.moves.front()));
+                        else
+                            history.record(Command(std::in_place_type<SetTransforms>, back),
+                                           Command(std::in_place_type<SetTransforms>, again));
+                    }
+                    dragFrom.clear();
                 }
                 if (options.printGizmo && gizmoPrintedFor != id && !snap->solving) {
                     if (const auto h = ui::Gizmo::handlePosition(gv, center, ui::GizmoPart::AxisX)) {
@@ -451,7 +485,7 @@ int runViewer(const ViewerOptions& options) {
                     const glm::dvec4 n = inv * glm::dvec4(ndc, 0.0, 1.0);
                     const glm::dvec4 f = inv * glm::dvec4(ndc, 1.0, 1.0);
                     const glm::dvec3 dir = glm::normalize(glm::dvec3(f) / f.w - glm::dvec3(n) / n.w);
-                    engine.post(PickObject{glm::dvec3(n) / n.w, dir});
+                    engine.post(PickObject{glm::dvec3(n) / n.w, dir, io.KeyShift});
                 }
                 leftOnScene = false;
             }

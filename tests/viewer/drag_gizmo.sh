@@ -2,11 +2,13 @@
 # Drags a gizmo's x-arrow with real X events, as a person would: the short
 # block's (preselected), or with PICK the gizmo of the object PICK after
 # clicking on it (any object can be picked and moved).
-# Run inside one xvfb-run session: drag_gizmo.sh VIEWER SCENE OUTDIR [PICK]
+# With PICK2 as well, PICK2 is shift+clicked after PICK: both are selected and
+# the gizmo (on PICK2) drags them together.
+# Run inside one xvfb-run session: drag_gizmo.sh VIEWER SCENE OUTDIR [PICK [PICK2]]
 # Writes OUTDIR/{viewer.log,before.png,after.png,undone.png,redone.png,overlays.png} and prints
 # "viewer-exit N" last.
 set -u
-viewer=$1 scene=$2 out=$3 pick=${4:-}
+viewer=$1 scene=$2 out=$3 pick=${4:-} pick2=${5:-}
 shot() { xwd -root -silent -display "$DISPLAY" | convert xwd:- "png:$1"; }
 # Waits (up to 30 s) for a line of the log starting with $1.
 wait_for() {
@@ -38,7 +40,16 @@ if [ -n "$pick" ]; then
   xdotool click 1
 fi
 wait_for "gizmo:"
-read -r x y < <(awk '/^gizmo:/ {print $3, $4; exit}' "$out/viewer.log")
+if [ -n "$pick2" ]; then
+  read -r qx qy < <(awk -v name="$pick2" '$1 == "object:" && $2 == name {print $3, $4; exit}' "$out/viewer.log")
+  sleep 0.5
+  xdotool mousemove "$qx" "$qy"
+  sleep 0.3
+  xdotool keydown shift click 1 keyup shift
+  # The gizmo moves to the object shift+clicked: its line is the second.
+  for _ in $(seq 300); do [ "$(grep -c '^gizmo:' "$out/viewer.log")" -ge 2 ] && break; sleep 0.1; done
+fi
+read -r x y < <(awk '/^gizmo:/ {x = $3; y = $4} END {print x, y}' "$out/viewer.log")
 if [ -z "${x:-}" ]; then echo "no gizmo line"; kill $pid; wait $pid; echo "viewer-exit $?"; exit 1; fi
 sleep 0.5
 shot "$out/before.png"
@@ -59,13 +70,16 @@ xdotool mousemove 1100 60   # off the block and the panel
 sleep 5
 shot "$out/after.png"
 
-# Ctrl+Z takes the drag back, Ctrl+Shift+Z does it again.
-xdotool key ctrl+z
-sleep 5
-shot "$out/undone.png"
-xdotool key ctrl+shift+z
-sleep 5
-shot "$out/redone.png"
+# Ctrl+Z takes the drag back, Ctrl+Shift+Z does it again (the preselected
+# block's run only: each step waits for the engine).
+if [ -z "$pick" ]; then
+  xdotool key ctrl+z
+  sleep 5
+  shot "$out/undone.png"
+  xdotool key ctrl+shift+z
+  sleep 5
+  shot "$out/redone.png"
+fi
 
 xdotool key l
 xdotool key c

@@ -215,11 +215,12 @@ bool haveDragTools() { return std::system("command -v xdotool >/dev/null && comm
 
 // tests/viewer/drag_gizmo.sh under Xvfb, writing into `dir`; `pick`: an object
 // to click on first, or empty for the preselected short block.
-ProcessResult runDragScript(const TempDir& dir, const std::string& pick) {
+ProcessResult runDragScript(const TempDir& dir, const std::string& pick, const std::string& pick2 = "") {
     const std::string script = std::string(RADIOSITY_SOURCE_DIR) + "/tests/viewer/drag_gizmo.sh";
     std::string command = "timeout 90 " + kXvfb + shellQuote(script) + " " + shellQuote(kViewer) + " " +
                           shellQuote(kScene) + " " + shellQuote(dir.path().string());
     if (!pick.empty()) command.append(" ").append(shellQuote(pick));  // append: GCC 12's false -Wrestrict
+    if (!pick2.empty()) command.append(" ").append(shellQuote(pick2));
     return run(command);
 }
 
@@ -290,6 +291,28 @@ TEST(ViewerTest, ClickingAnObjectNotMarkedDynamicSelectsAndMovesIt) {
     // and what idle time catches up to differs by up to about 3 of 255 there:
     // README, "Known limits".)
     EXPECT_GT(meanAbsDifference(before, after, 530, 330, 600, 460), 10.0);
+    EXPECT_LT(meanAbsDifference(before, after, 700, 150, 800, 250), 4.0);
+}
+
+// Shift+click: the tall block clicked, then the short block shift+clicked;
+// the gizmo (on the short block) drags both in one frame each.
+TEST(ViewerTest, ShiftClickingTwoObjectsMovesThemTogether) {
+    ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    ASSERT_TRUE(haveDragTools()) << "xdotool and xwd (x11-apps) are needed";
+    TempDir dir;
+    const ProcessResult r = runDragScript(dir, "tall-block", "short-block");
+    const std::string log = readFile((dir / "viewer.log").string());
+    ASSERT_NE(r.output.find("viewer-exit 0"), std::string::npos) << r.output << log;
+    EXPECT_NE(log.find("engine: transform tall-block"), std::string::npos) << log;
+    EXPECT_NE(log.find("engine: transform short-block"), std::string::npos) << log;
+    const Picture before = readPicture((dir / "before.png").string());
+    const Picture after = readPicture((dir / "after.png").string());
+    ASSERT_GE(before.width, 1000);
+    ASSERT_EQ(after.width, before.width);
+    // Both blocks left where they stood: the tall block's front (as in the
+    // click test) and the floor beside the short block (as in the drag test).
+    EXPECT_GT(meanAbsDifference(before, after, 530, 330, 600, 460), 10.0);
+    EXPECT_GT(meanAbsDifference(before, after, 815, 690, 900, 735), 2.0);
     EXPECT_LT(meanAbsDifference(before, after, 700, 150, 800, 250), 4.0);
 }
 
