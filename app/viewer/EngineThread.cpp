@@ -203,6 +203,30 @@ void EngineThread::run() {
         }
     };
 
+    // Moves objects in one frame (Engine::moveObjects; an object not chosen
+    // yet is chosen first), logging each transform for the tests.
+    auto applyMoves = [&](const std::vector<SetTransform>& transforms) {
+        const Scene& scene = w.engine->scene();
+        std::vector<std::pair<std::string, glm::dmat4>> moves;
+        for (const SetTransform& m : transforms) {
+            if (m.object >= scene.objects.size()) continue;
+            const Object& o = scene.objects[m.object];
+            if (w.options.log) {
+                std::ostringstream line;
+                line << "engine: transform " << o.name << " translation " << m.worldFromLocal[3][0] << ' '
+                     << m.worldFromLocal[3][1] << ' ' << m.worldFromLocal[3][2];
+                w.options.log(line.str());
+            }
+            if (o.polygonCount > 0) moves.emplace_back(o.name, m.worldFromLocal);
+        }
+        if (moves.empty()) return;
+        w.frame = w.engine->moveObjects(moves, w.update());
+        for (const SetTransform& m : transforms) w.moved[m.object] = m.worldFromLocal;
+        ++w.moves;
+        w.history.push_back({w.now(), w.frame.totalSeconds});
+        while (!w.history.empty() && w.history.front().time < w.now() - w.options.historySeconds) w.history.pop_front();
+    };
+
     // Builds and solves the engine; re-applies earlier moves and the selection.
     auto solveEngine = [&]() -> bool {
         w.solving = true;
@@ -292,26 +316,7 @@ void EngineThread::run() {
                                 if (const auto* next = std::get_if<SetTransform>(&commands[i + 1]);
                                     next && next->object == t.object)
                                     return;
-                            const Scene& scene = w.engine->scene();
-                            if (t.object >= scene.objects.size()) return;
-                            const Object& o = scene.objects[t.object];
-                            if (w.options.log) {
-                                std::ostringstream line;
-                                line << "engine: transform " << o.name << " translation "
-                                     << t.worldFromLocal[3][0] << ' ' << t.worldFromLocal[3][1]
-                                     << ' ' << t.worldFromLocal[3][2];
-                                w.options.log(line.str());
-                            }
-                            if (o.polygonCount == 0) return;
-                            if (w.engine->dynamicObject() != t.object)
-                                w.engine->setDynamicObject(o.name, w.update());
-                            w.frame = w.engine->moveDynamicObject(t.worldFromLocal, w.update());
-                            w.moved[t.object] = t.worldFromLocal;
-                            ++w.moves;
-                            w.history.push_back({w.now(), w.frame.totalSeconds});
-                            while (!w.history.empty() &&
-                                   w.history.front().time < w.now() - w.options.historySeconds)
-                                w.history.pop_front();
+                            applyMoves({t});
                             changed = true;
                         },
                         [&](const SelectObject& s) {
@@ -342,26 +347,7 @@ void EngineThread::run() {
                                     std::equal(t.moves.begin(), t.moves.end(), next->moves.begin(),
                                                [](const SetTransform& a, const SetTransform& b) { return a.object == b.object; }))
                                     return;
-                            const Scene& scene = w.engine->scene();
-                            std::vector<std::pair<std::string, glm::dmat4>> moves;
-                            for (const SetTransform& m : t.moves) {
-                                if (m.object >= scene.objects.size() || scene.objects[m.object].polygonCount == 0) continue;
-                                if (w.options.log) {
-                                    std::ostringstream line;
-                                    line << "engine: transform " << scene.objects[m.object].name << " translation "
-                                         << m.worldFromLocal[3][0] << ' ' << m.worldFromLocal[3][1] << ' '
-                                         << m.worldFromLocal[3][2];
-                                    w.options.log(line.str());
-                                }
-                                moves.emplace_back(scene.objects[m.object].name, m.worldFromLocal);
-                            }
-                            if (moves.empty()) return;
-                            w.frame = w.engine->moveObjects(moves, w.update());
-                            for (const SetTransform& m : t.moves) w.moved[m.object] = m.worldFromLocal;
-                            ++w.moves;
-                            w.history.push_back({w.now(), w.frame.totalSeconds});
-                            while (!w.history.empty() && w.history.front().time < w.now() - w.options.historySeconds)
-                                w.history.pop_front();
+                            applyMoves(t.moves);
                             changed = true;
                         },
                         [&](const SetTargetFps& f) {
