@@ -1,6 +1,7 @@
 #include "cli/Script.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -46,13 +47,15 @@ Edit& editOf(Script& script, const std::string& object) {
 }  // namespace
 
 Script readScript(const std::string& path) {
+    if (std::filesystem::is_directory(path)) throw UsageError(path + ": is a directory, not a script");
     std::ifstream in(path);
     if (!in) throw UsageError(path + ": cannot read the script");
     Json doc;
     try {
         doc = Json::parse(in);
-    } catch (const Json::parse_error& e) {
-        // nlohmann's message names the byte; keep it to one line.
+    } catch (const Json::exception& e) {
+        // Malformed, or a number out of range (1e309): nlohmann's message
+        // names the byte; keep it to one line.
         throw UsageError(path + ": not valid JSON (" + std::string(e.what()).substr(0, 160) + ")");
     }
     if (!doc.is_object()) throw UsageError(path + ": the script must be a JSON object with 'frames' and 'actions'");

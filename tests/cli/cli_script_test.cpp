@@ -99,6 +99,7 @@ TEST(CliScript, BadScriptsFailWithOneLineNamingTheAction) {
         {R"({"frames": 2, "actions": [{"object": "light", "spin": 3}]})", "spin"},
         {R"({"frames": 0, "actions": [{"object": "light", "translate": [0, 0, 1]}]})", "frames"},
         {R"({"frames": 2, "actions": [{"object": "light", "translate": [0, 0, 1]})", "JSON"},
+        {R"({"frames": 2, "actions": [{"object": "light", "emission": [1e309, 0, 0]}]})", "JSON"},
     };
     for (const auto& c : cases) {
         const auto r = run(c.script);
@@ -112,6 +113,9 @@ TEST(CliScript, BadScriptsFailWithOneLineNamingTheAction) {
                           " --object light");
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_EQ(runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote((dir / "missing.json").string())).exitCode, 2);
+    const auto directory = runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote(dir.path().string()));
+    EXPECT_EQ(directory.exitCode, 2) << directory.output;
+    EXPECT_NE(directory.output.find("directory"), std::string::npos) << directory.output;
 }
 
 }  // namespace
