@@ -308,13 +308,9 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         objects.emplace_back(*object, worldFromLocal);
     }
     // Objects not chosen yet join the dynamic layer first (paper sec. 3.3).
-    FrameStats chosen;
+    double choosingSeconds = 0.0;
     for (const auto& [object, m] : objects)
-        if (!s.chosen.count(object)) {
-            const FrameStats f = setDynamicObject(s.scene.objects[object].name, settings);
-            chosen.totalSeconds += f.totalSeconds;
-            chosen.updateSeconds += f.totalSeconds;
-        }
+        if (!s.chosen.count(object)) choosingSeconds += setDynamicObject(s.scene.objects[object].name, settings).totalSeconds;
     if (!objects.empty()) s.dynamic = objects.back().first;
 
     const auto start = std::chrono::steady_clock::now();
@@ -342,8 +338,8 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     const double moveSeconds = secondsSince(start);
     FrameStats stats = s.updater.update(motions, settings);
     stats.moveSeconds = moveSeconds;
-    stats.totalSeconds += moveSeconds + chosen.totalSeconds;
-    stats.updateSeconds += chosen.updateSeconds;
+    stats.totalSeconds += moveSeconds + choosingSeconds;
+    stats.updateSeconds += choosingSeconds;
     s.buildMesh(stats);
     s.budget.record(stats.spent, stats.totalSeconds);
     return stats;
@@ -365,63 +361,77 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
 
 FrameStats Engine::editMaterial(const std::string& object, const std::optional<glm::dvec3>& emission,
                                 const std::optional<glm::dvec3>& reflectance, const UpdateSettings& settings) {
+    return editMaterials({{object, emission, reflectance}}, settings);
+}
+
+namespace {
+
+std::string channels(const glm::dvec3& v) {
+    std::ostringstream out;
+    out << v.x << "," << v.y << "," << v.z;
+    return out.str();
+}
+
+}  // namespace
+
+FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("editMaterial before solve()");
-    const std::optional<std::uint32_t> found = s.scene.findObject(object);
-    if (!found || s.scene.objects[*found].polygonCount == 0)
-        throw std::invalid_argument("no object '" + object + "' with polygons in " + s.scene.sourcePath);
-    const auto channels = [](const glm::dvec3& v) {
-        std::ostringstream out;
-        out << v.x << "," << v.y << "," << v.z;
-        return out.str();
-    };
-    if (emission && (!glm::all(glm::greaterThanEqual(*emission, glm::dvec3(0.0))) ||
-                     !std::isfinite(emission->x + emission->y + emission->z)))
-        throw std::invalid_argument("emission " + channels(*emission) + " of '" + object +
-                                    "': each channel must be finite and at least 0");
-    if (reflectance && !(glm::all(glm::greaterThanEqual(*reflectance, glm::dvec3(0.0))) &&
-                         glm::all(glm::lessThanEqual(*reflectance, glm::dvec3(1.0)))))
-        throw std::invalid_argument("reflectance " + channels(*reflectance) + " of '" + object +
-                                    "': each channel must be in [0, 1]");
-    const Object& o = s.scene.objects[*found];
-    // The object's own copies of its materials (other objects may share
-    // them), with only the given values changed.
-    std::map<std::uint32_t, std::uint32_t> copyOf;
-    for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) {
-        const std::uint32_t old = s.scene.polygons[p].material;
-        if (copyOf.count(old)) continue;
-        Material m = s.scene.materials[old];
-        if (emission) m.emission = *emission;
-        if (reflectance) m.reflectance = glm::min(*reflectance, glm::dvec3(kMaxReflectance));
-        const Material& was = s.scene.materials[old];
-        if (m.emission == was.emission && m.reflectance == was.reflectance) {
-            copyOf[old] = old;  // nothing to change
-            continue;
-        }
-        m.name = was.name + " (" + object + ", edited)";
-        copyOf[old] = static_cast<std::uint32_t>(s.scene.materials.size());
-        s.scene.materials.push_back(m);
+    // Every edit checked before any is applied.
+    for (const MaterialEdit& e : edits) {
+        const std::optional<std::uint32_t> found = s.scene.findObject(e.object);
+        if (!found || s.scene.objects[*found].polygonCount == 0)
+            throw std::invalid_argument("no object '" + e.object + "' with polygons in " + s.scene.sourcePath);
+        if (e.emission && (!glm::all(glm::greaterThanEqual(*e.emission, glm::dvec3(0.0))) ||
+                           !std::isfinite(e.emission->x + e.emission->y + e.emission->z)))
+            throw std::invalid_argument("emission " + channels(*e.emission) + " of '" + e.object +
+                                        "': each channel must be finite and at least 0");
+        if (e.reflectance && !(glm::all(glm::greaterThanEqual(*e.reflectance, glm::dvec3(0.0))) &&
+                               glm::all(glm::lessThanEqual(*e.reflectance, glm::dvec3(1.0)))))
+            throw std::invalid_argument("reflectance " + channels(*e.reflectance) + " of '" + e.object +
+                                        "': each channel must be in [0, 1]");
     }
     std::vector<ElementId> changed;
-    for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) {
-        const std::uint32_t material = copyOf[s.scene.polygons[p].material];
-        if (material == s.scene.polygons[p].material) continue;
-        s.scene.polygons[p].material = material;
-        const Material& m = s.scene.materials[material];
-        const ElementId top = s.hierarchy.polygonElement(p);
-        if (top == kNone) continue;
-        changed.push_back(top);
-        // Every element of its quadtree: the leaves reflect, and children
-        // made later copy their parent's.
-        for (std::vector<ElementId> stack{top}; !stack.empty();) {
-            const ElementId e = stack.back();
-            stack.pop_back();
-            s.hierarchy[e].emission = m.emission;
-            s.hierarchy[e].reflectance = m.reflectance;
-            for (ElementId c : s.hierarchy[e].children) stack.push_back(c);
+    for (const MaterialEdit& e : edits) {
+        const Object& o = s.scene.objects[*s.scene.findObject(e.object)];
+        // The object's own copies of its materials (other objects may share
+        // them), with only the given values changed.
+        std::map<std::uint32_t, std::uint32_t> copyOf;
+        for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) {
+            const std::uint32_t old = s.scene.polygons[p].material;
+            if (copyOf.count(old)) continue;
+            Material m = s.scene.materials[old];
+            if (e.emission) m.emission = *e.emission;
+            if (e.reflectance) m.reflectance = glm::min(*e.reflectance, glm::dvec3(kMaxReflectance));
+            const Material& was = s.scene.materials[old];
+            if (m.emission == was.emission && m.reflectance == was.reflectance) {
+                copyOf[old] = old;  // nothing to change
+                continue;
+            }
+            m.name = was.name + " (" + e.object + ", edited)";
+            copyOf[old] = static_cast<std::uint32_t>(s.scene.materials.size());
+            s.scene.materials.push_back(m);
+        }
+        for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) {
+            const std::uint32_t material = copyOf[s.scene.polygons[p].material];
+            if (material == s.scene.polygons[p].material) continue;
+            s.scene.polygons[p].material = material;
+            const Material& m = s.scene.materials[material];
+            const ElementId top = s.hierarchy.polygonElement(p);
+            if (top == kNone) continue;
+            changed.push_back(top);
+            // Every element of its quadtree: the leaves reflect, and children
+            // made later copy their parent's.
+            for (std::vector<ElementId> stack{top}; !stack.empty();) {
+                const ElementId el = stack.back();
+                stack.pop_back();
+                s.hierarchy[el].emission = m.emission;
+                s.hierarchy[el].reflectance = m.reflectance;
+                for (ElementId c : s.hierarchy[el].children) stack.push_back(c);
+            }
         }
     }
-    if (changed.empty()) return FrameStats{};  // the values it already has: nothing changes
+    if (changed.empty()) return FrameStats{};  // the values they already have: nothing changes
     FrameStats stats = s.updater.propagate(changed, settings);
     // The light changed everywhere its bounces reached, not in a region a
     // shaft bounds: refinement is judged again from it, as a solve of the

@@ -112,16 +112,18 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
                 frame.emplace_back(moves[k].object, moves[k].motion.at(t, center[k], startTransform[k]));
             record.stats = engine.moveObjects(frame, update);
         }
-        for (std::size_t k = 0; k < edits.size(); ++k) {
-            const Edit& e = edits[k];
-            std::optional<glm::dvec3> emission, reflectance;
-            if (e.emission) emission = glm::mix(startOf[k].emission, *e.emission, t);
-            if (e.reflectance) reflectance = glm::mix(startOf[k].reflectance, *e.reflectance, t);
+        if (!edits.empty()) {
+            std::vector<Engine::MaterialEdit> frameEdits;
+            for (std::size_t k = 0; k < edits.size(); ++k) {
+                Engine::MaterialEdit& e = frameEdits.emplace_back(Engine::MaterialEdit{edits[k].object, {}, {}});
+                if (edits[k].emission) e.emission = glm::mix(startOf[k].emission, *edits[k].emission, t);
+                if (edits[k].reflectance) e.reflectance = glm::mix(startOf[k].reflectance, *edits[k].reflectance, t);
+            }
             // What the move left of the frame's budget.
             UpdateSettings left = update;
             if (update.budget) left.budget = *update.budget - std::min(*update.budget, record.stats.spent);
             try {
-                addFrame(record.stats, engine.editMaterial(e.object, emission, reflectance, left));
+                addFrame(record.stats, engine.editMaterials(frameEdits, left));
             } catch (const std::invalid_argument& error) {
                 throw std::runtime_error(error.what());
             }

@@ -202,6 +202,7 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
 
 FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, const UpdateSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
+    editStart_ = start;
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
@@ -219,8 +220,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     recordOverlay(visited, false);
     bounce(std::move(visited), settings, stats);
     stats.pushPullSeconds = secondsSince(start);
-    finish(stats, start);
-    return stats;
+    return stats;  // judgeAgain finishes the frame
 }
 
 void LineSpaceUpdate::judgeAgain(const UpdateSettings& settings, FrameStats& stats) {
@@ -245,8 +245,7 @@ void LineSpaceUpdate::judgeAgain(const UpdateSettings& settings, FrameStats& sta
     bounce(std::move(visited), settings, stats);
     touched_.clear();  // the oracles are anchored at this light next (Engine)
     stats.updateSeconds += secondsSince(start);
-    finish(stats, start - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                std::chrono::duration<double>(stats.totalSeconds)));
+    finish(stats, editStart_);
 }
 
 // Links made during the frame (refinement) have ids past the stamps sized

@@ -69,7 +69,7 @@ public:
     // every active link judged again (refined within the budget, the rest
     // pending) and the p-links no longer needed reinstated, as a solve's
     // refinement would leave them; then the light of what changed, bounced.
-    // Adds to `stats`.
+    // Adds to `stats` and finishes the frame that propagate began.
     void judgeAgain(const UpdateSettings& settings, FrameStats& stats);
     // Refines, within the budget, the links a budget left coarse, with no
     // motion (what an idle viewer does between moves).
@@ -174,6 +174,7 @@ private:
 
     // Per frame.
     std::vector<ObjectMotion> motions_;
+    std::chrono::steady_clock::time_point editStart_;  // when propagate began the frame judgeAgain ends
     // Whether an element lies in, or holds, a moving object's cluster.
     bool movedEnd(ElementId e) const;
     std::vector<Aabb> obstacles_;

@@ -69,6 +69,24 @@ TEST(MaterialEdit, WallRecolouredThenBackReturnsTheSolution) {
     EXPECT_LT(compareSamples(engine.samples(), original).rms, 0.001) << "back to the original colour";
 }
 
+// Several objects' edits in one frame (one push-pull and one judging of the
+// links); a bad edit among them changes nothing.
+TEST(MaterialEdit, SeveralEditsInOneFrameMatchAFullSolve) {
+    const EngineSettings settings = test::coarse();
+    Engine engine(twoLamps(), settings);
+    ASSERT_TRUE(engine.solve().converged);
+    const RadiositySamples original = engine.samples();
+    EXPECT_THROW(engine.editMaterials({{"lamp-2", V(1.0), std::nullopt}, {"wall-x0", std::nullopt, V(2.0)}}),
+                 std::invalid_argument);
+    EXPECT_EQ(compareSamples(engine.samples(), original).rms, 0.0) << "a refused batch changes nothing";
+    const FrameStats f =
+        engine.editMaterials({{"lamp-2", V(2.0, 3.0, 4.0), std::nullopt}, {"wall-x0", std::nullopt, V(0.2, 0.5, 0.3)}});
+    EXPECT_GT(f.changedElements, 0u);
+    const SolutionError e = test::compareWithFullSolve(engine, settings);
+    EXPECT_LT(e.rms, 0.01) << "max " << e.max;
+    EXPECT_LT(e.worstObjectRms, 0.03);
+}
+
 TEST(MaterialEdit, BadValuesAndObjectsAreRefusedByName) {
     Engine engine(twoLamps(), test::coarse());
     ASSERT_TRUE(engine.solve().converged);

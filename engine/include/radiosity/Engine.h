@@ -72,6 +72,14 @@ public:
     // the object and the value otherwise, or for an unknown object.
     FrameStats editMaterial(const std::string& object, const std::optional<glm::dvec3>& emission,
                             const std::optional<glm::dvec3>& reflectance, const UpdateSettings& settings = {});
+    // Several objects' edits in one frame: one push-pull, one judging of
+    // the links, whatever the number of objects.
+    struct MaterialEdit {
+        std::string object;
+        std::optional<glm::dvec3> emission;
+        std::optional<glm::dvec3> reflectance;
+    };
+    FrameStats editMaterials(const std::vector<MaterialEdit>& edits, const UpdateSettings& settings = {});
     // Refines, within the settings' budget and without motion, the links an
     // earlier budget left coarse; with nothing left to refine, gives back the
     // growth slack of the link lists.
