@@ -12,6 +12,7 @@
 #include "geometry/RayCaster.h"
 #include "radiosity/Gltf.h"
 #include "hierarchy/Hierarchy.h"
+#include "lights/LightLinks.h"
 #include "links/Link.h"
 #include "refine/Refiner.h"
 #include "snapshot/Sampling.h"
@@ -43,13 +44,14 @@ double totalArea(const Scene& scene) {
 double emittedPower(const Scene& scene) {
     double power = 0.0;
     for (const Polygon& p : scene.polygons) power += p.area() * luminance(scene.materials[p.material].emission);
+    for (const PunctualLight& l : scene.lights) power += l.power();
     return power;
 }
 
 Scene checkedScene(Scene scene) {
     if (!scene.hasEmitter())
-        throw SceneError(scene.sourcePath + ": nothing emits light (no material has a positive emissiveFactor); "
-                         "there is nothing to solve");
+        throw SceneError(scene.sourcePath + ": nothing emits light (no material has a positive emissiveFactor "
+                         "and no punctual light a positive intensity); there is nothing to solve");
     return scene;
 }
 
@@ -64,7 +66,8 @@ struct Engine::State {
                   RefineSettings{settings.epsilon, emittedPower(scene), settings.samplesPerElement,
                                  settings.maxMemoryBytes > 0 ? settings.maxMemoryBytes : defaultMemoryLimit()}),
           solver(hierarchy, links),
-          updater(hierarchy, links, refiner, solver, emittedPower(scene) / totalArea(scene)) {}
+          updater(hierarchy, links, refiner, solver, emittedPower(scene) / totalArea(scene)),
+          lightLinks(scene, hierarchy, rays) {}
 
     // Adds `object` to the dynamic layer (the objects chosen so far) and
     // splits the polygons into the two visibility layers around them.
@@ -99,7 +102,20 @@ struct Engine::State {
     Refiner refiner;
     Solver solver;
     LineSpaceUpdate updater;
+    LightLinks lightLinks;
     BudgetControl budget{1e-5};
+
+    // The light links' threshold follows the refiner's (edits change its
+    // reference power).
+    void setLightThreshold() {
+        lightLinks.setThreshold(refiner.settings().epsilon * refiner.settings().referencePower);
+    }
+    // Elements whose direct light changed are pushed again, and the
+    // solver's bound follows the lights.
+    void lightChanged(const std::vector<ElementId>& elements) {
+        for (ElementId e : elements) refiner.markDirty(e);
+        solver.setDirectBound(lightLinks.directBound());
+    }
     SolveStats stats;
     bool solved = false;
 
@@ -168,7 +184,13 @@ const SolveStats& Engine::solve(const Progress& progress) {
     SolveStats& st = s.stats;
     s.meshValid = false;
     s.refiner.linkRoot();
-    // Radiosity starts at emission, so the first refinement sees the lights.
+    // Punctual lights reach the surfaces through light links, refined once:
+    // the light a point gets from them does not depend on the solution.
+    s.setLightThreshold();
+    s.lightLinks.linkAll();
+    s.solver.setDirectBound(s.lightLinks.directBound());
+    // Radiosity starts at emission and direct light, so the first
+    // refinement sees the lights.
     s.solver.pushPull();
     SolveResult r;
     for (int round = 1; round <= s.settings.maxRefineRounds; ++round) {
@@ -251,6 +273,8 @@ std::optional<std::uint32_t> Engine::dynamicObject() const { return state_->dyna
 
 FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSettings& settings) {
     State& s = *state_;
+    // A punctual light is not in the hierarchy: nothing to split.
+    if (s.scene.findLight(name)) return {};
     const std::optional<std::uint32_t> object = s.scene.findObject(name);
     if (!object) throw std::invalid_argument("no object named '" + name + "' in " + s.scene.sourcePath);
     const ElementId cluster = s.hierarchy.objectCluster(*object);
@@ -288,13 +312,15 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
                                const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("moveObjects before solve()");
-    std::vector<std::pair<std::uint32_t, glm::dmat4>> objects;
+    std::vector<std::pair<std::uint32_t, glm::dmat4>> objects, lights;
     for (const auto& [name, worldFromLocal] : moves) {
+        for (const auto& [other, m] : moves)
+            if (&other != &name && other == name) throw std::invalid_argument("'" + name + "' is moved twice in one frame");
+        const std::optional<std::uint32_t> light = s.scene.findLight(name);
         const std::optional<std::uint32_t> object = s.scene.findObject(name);
-        if (!object || s.hierarchy.objectCluster(*object) == kNone)
-            throw std::invalid_argument("no object '" + name + "' with polygons in " + s.scene.sourcePath);
-        for (const auto& [other, m] : objects)
-            if (other == *object) throw std::invalid_argument("'" + name + "' is moved twice in one frame");
+        if (!light && (!object || s.hierarchy.objectCluster(*object) == kNone))
+            throw std::invalid_argument("no object '" + name + "' with polygons and no light of that name in " +
+                                        s.scene.sourcePath);
         const glm::dmat3 r(worldFromLocal);
         const glm::dmat3 rtr = glm::transpose(r) * r;
         bool rigid = std::abs(glm::determinant(r) - 1.0) < 1e-6 && worldFromLocal[0][3] == 0.0 &&
@@ -305,7 +331,10 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
             for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]);
         if (!rigid)
             throw std::invalid_argument("the transform of '" + name + "' is not a finite rigid motion (rotation and translation)");
-        objects.emplace_back(*object, worldFromLocal);
+        if (light)
+            lights.emplace_back(*light, worldFromLocal);
+        else
+            objects.emplace_back(*object, worldFromLocal);
     }
     // Objects not chosen yet join the dynamic layer first (paper sec. 3.3).
     double choosingSeconds = 0.0;
@@ -334,6 +363,30 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         motions.push_back({before, s.scene.objectBounds(object), s.hierarchy.range(cluster)});
     }
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
+    // The light links: the lights that moved are linked again everywhere;
+    // for the others, the polygons the objects moved on, and those whose
+    // shafts toward a light the objects cross before or after the move.
+    if (!s.scene.lights.empty()) {
+        std::vector<Aabb> boxes;
+        std::vector<std::uint32_t> relinked;
+        for (const ObjectMotion& m : motions) boxes.insert(boxes.end(), {m.oldBox, m.newBox});
+        for (std::uint32_t p : s.lightLinks.shadedBy(boxes)) relinked.push_back(p);
+        for (const auto& [object, m] : objects) {
+            const Object& o = s.scene.objects[object];
+            for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) relinked.push_back(p);
+        }
+        std::sort(relinked.begin(), relinked.end());
+        relinked.erase(std::unique(relinked.begin(), relinked.end()), relinked.end());
+        std::vector<ElementId> changed = s.lightLinks.relink(relinked);
+        for (const auto& [light, worldFromLocal] : lights) {
+            PunctualLight& l = s.scene.lights[light];
+            l.worldFromLocal = worldFromLocal;
+            l.position = glm::dvec3(worldFromLocal * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+            l.direction = glm::normalize(glm::dmat3(worldFromLocal) * glm::dvec3(0.0, 0.0, -1.0));
+            for (ElementId e : s.lightLinks.relinkLight(light)) changed.push_back(e);
+        }
+        s.lightChanged(changed);
+    }
     s.updater.setObstacles(std::move(obstacles));
     const double moveSeconds = secondsSince(start);
     FrameStats stats = s.updater.update(motions, settings);
@@ -380,8 +433,12 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     // Every edit checked before any is applied.
     for (const MaterialEdit& e : edits) {
         const std::optional<std::uint32_t> found = s.scene.findObject(e.object);
-        if (!found || s.scene.objects[*found].polygonCount == 0)
-            throw std::invalid_argument("no object '" + e.object + "' with polygons in " + s.scene.sourcePath);
+        const bool light = s.scene.findLight(e.object).has_value();
+        if (!light && (!found || s.scene.objects[*found].polygonCount == 0))
+            throw std::invalid_argument("no object '" + e.object + "' with polygons and no light of that name in " +
+                                        s.scene.sourcePath);
+        if (light && e.reflectance)
+            throw std::invalid_argument("'" + e.object + "' is a punctual light: it has no reflectance");
         if (e.emission && (!glm::all(glm::greaterThanEqual(*e.emission, glm::dvec3(0.0))) ||
                            !std::isfinite(e.emission->x + e.emission->y + e.emission->z)))
             throw std::invalid_argument("emission " + channels(*e.emission) + " of '" + e.object +
@@ -393,6 +450,15 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     }
     std::vector<ElementId> changed;
     for (const MaterialEdit& e : edits) {
+        // A light's emission is its intensity (colour times intensity).
+        if (const std::optional<std::uint32_t> light = s.scene.findLight(e.object)) {
+            if (!e.emission || s.scene.lights[*light].intensity == *e.emission) continue;
+            s.scene.lights[*light].intensity = *e.emission;
+            const std::vector<ElementId> lit = s.lightLinks.refreshIntensity(*light);
+            changed.insert(changed.end(), lit.begin(), lit.end());
+            s.solver.setDirectBound(s.lightLinks.directBound());
+            continue;
+        }
         const Object& o = s.scene.objects[*s.scene.findObject(e.object)];
         // The object's own copies of its materials (other objects may share
         // them), with only the given values changed.
@@ -442,6 +508,7 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
         RefineSettings rs = s.refiner.settings();
         rs.referencePower = power;
         s.refiner.setSettings(rs);
+        s.setLightThreshold();
     }
     s.setOracles();
     s.updater.judgeAgain(settings, stats);
@@ -466,6 +533,7 @@ std::size_t Engine::linksCarrying(std::uint32_t from, const glm::dvec2& uvFrom, 
 EnergyBalance Engine::energy() const {
     const State& s = *state_;
     EnergyBalance e = s.solver.energy();
+    for (const PunctualLight& l : s.scene.lights) e.emitted += l.power();
     auditEnergy(s.scene, s.hierarchy, s.rays, e);
     return e;
 }

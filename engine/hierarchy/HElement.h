@@ -67,6 +67,10 @@ struct HElement {
     // (Solver: what coarse links bring goes to the part of each child's view
     // that finer links leave uncovered).
     double coverage = 0.0;
+    // Surfaces: the irradiance punctual lights send through the light links
+    // that end here (lights/LightLinks.h), and whether any does.
+    glm::dvec3 direct{0.0};
+    bool lit = false;
     glm::dvec3 radiosity{0.0};   // B; for clusters the area-weighted mean below
     // Surfaces: the largest luminance of B among the leaves below (a leaf's
     // own). A link sends the mean B of its source, which stands for its

@@ -407,7 +407,7 @@ void Hierarchy::removeChildren(ElementId id) {
 
 bool Hierarchy::subtreeUnlinked(ElementId id) const {
     const HElement& e = elements_[id];
-    if (!e.links.empty() || !e.plinks.empty() || !e.outLinks.empty() || !e.outPlinks.empty()) return false;
+    if (e.lit || !e.links.empty() || !e.plinks.empty() || !e.outLinks.empty() || !e.outPlinks.empty()) return false;
     for (ElementId c : e.children)
         if (!subtreeUnlinked(c)) return false;
     return true;

@@ -83,7 +83,7 @@ public:
     void subdivide(ElementId id);
     // Removes the children (and their subtrees) of a surface element.
     void removeChildren(ElementId id);
-    // Whether no link, p-link or outgoing link touches the subtree of `id`:
+    // Whether no link, p-link, outgoing link or light link touches the subtree of `id`:
     // subdivision that serves nothing.
     bool subtreeUnlinked(ElementId id) const;
 

@@ -10,6 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -211,11 +212,9 @@ class Importer {
         if (!model_.animations.empty())
             note(std::to_string(model_.animations.size()) + " animation(s) ignored");
         if (!model_.skins.empty()) note(std::to_string(model_.skins.size()) + " skin(s) ignored");
-        if (!model_.lights.empty())
-            note(std::to_string(model_.lights.size()) +
-                 " punctual light(s) ignored: only emissive surfaces emit");
         for (const std::string& ext : model_.extensionsUsed) {
-            if (ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_unlit")
+            if (ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_unlit" &&
+                ext != "KHR_lights_punctual")
                 note("extension " + ext + " ignored");
         }
     }
@@ -295,6 +294,7 @@ class Importer {
         if (visited_[index])
             fail(item, "is reached twice in the node tree (cycle or shared child)");
         visited_[index] = true;
+        nodePath_.push_back(static_cast<std::uint32_t>(index));
 
         const glm::dmat4 world = parentWorld * localTransform(node, item);
         if (!allFinite(world)) fail(item, "world transform overflows to NaN or Inf");
@@ -302,7 +302,11 @@ class Importer {
         if (node.camera >= 0) visitCamera(node.camera, world, item);
         if (node.skin >= 0) note(item + ": skin ignored");
         if (!node.weights.empty()) note(item + ": morph weights ignored");
-        if (!node.extensions.empty()) note(item + ": node extensions ignored");
+        for (const auto& [name, value] : node.extensions)
+            if (name == "KHR_lights_punctual")
+                visitLight(index, value, world, item);
+            else
+                note(item + ": node extension " + name + " ignored");
         const bool dynamic = extrasFlag(node, "dynamic");
         if (group) {
             if (dynamic || extrasFlag(node, "object"))
@@ -315,6 +319,7 @@ class Importer {
             pending.object.name = uniqueName(index);
             pending.object.worldFromLocal = world;
             pending.object.dynamic = dynamic;
+            pending.object.nodePath = nodePath_;
             pending_.push_back(std::move(pending));
             group = pending_.size() - 1;
         }
@@ -324,6 +329,57 @@ class Importer {
             nodeAt(child, item);
             visitNode(child, world, group);
         }
+        nodePath_.pop_back();
+    }
+
+    // A node's KHR_lights_punctual light: point and spot lights become
+    // lights of the scene, named after the node; directional ones have no
+    // position and are left out with a note.
+    void visitLight(int nodeIndex, const tinygltf::Value& ext, const glm::dmat4& world, const std::string& item) {
+        if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsNumber())
+            fail(item, "KHR_lights_punctual has no light index");
+        const int index = ext.Get("light").GetNumberAsInt();
+        if (index < 0 || index >= static_cast<int>(model_.lights.size()))
+            fail(item, "refers to light " + std::to_string(index) + " which does not exist");
+        const tinygltf::Light& l = model_.lights[index];
+        const std::string lightItem = quoted("light", l.name, static_cast<std::size_t>(index));
+        if (l.type == "directional") {
+            note(item + ": directional " + lightItem + " ignored: only point and spot lights have a position");
+            return;
+        }
+        PunctualLight light;
+        if (l.type == "point")
+            light.type = PunctualLight::Type::Point;
+        else if (l.type == "spot")
+            light.type = PunctualLight::Type::Spot;
+        else
+            fail(lightItem, "type '" + l.type + "' is not point, spot or directional");
+        glm::dvec3 color(1.0);
+        if (!l.color.empty()) {
+            if (l.color.size() != 3) fail(lightItem, "color must have 3 numbers");
+            color = glm::dvec3(l.color[0], l.color[1], l.color[2]);
+        }
+        if (!allFinite(l.color) || !(color.x >= 0.0 && color.y >= 0.0 && color.z >= 0.0))
+            fail(lightItem, "color must be finite and at least 0 in each channel");
+        if (!std::isfinite(l.intensity) || l.intensity < 0.0)
+            fail(lightItem, "intensity " + std::to_string(l.intensity) + " must be finite and at least 0");
+        if (l.range > 0.0) note(lightItem + ": range ignored: light falls off as 1/r^2 at every distance");
+        if (light.type == PunctualLight::Type::Spot) {
+            const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+            if (!std::isfinite(inner) || !std::isfinite(outer) || inner < 0.0 || !(inner < outer) ||
+                outer > 0.5 * std::numbers::pi + 1e-9)
+                fail(lightItem, "spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+            light.innerCone = inner;
+            light.outerCone = std::min(outer, 0.5 * std::numbers::pi);
+        }
+        light.name = uniqueName(nodeIndex);
+        light.intensity = color * l.intensity;
+        light.worldFromLocal = world;
+        light.position = glm::dvec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+        const glm::dvec3 axis = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+        if (!(glm::length(axis) > 0.0)) fail(item, "transform collapses the light's direction");
+        light.direction = glm::normalize(axis);
+        lights_.push_back(light);
     }
 
     static bool extrasFlag(const tinygltf::Node& node, const char* key) {
@@ -381,6 +437,7 @@ class Importer {
             pending.item = item;
             pending.object.name = uniqueName(nodeIndex);
             pending.object.worldFromLocal = world;
+            pending.object.nodePath = nodePath_;
             pending_.push_back(std::move(pending));
             group = pending_.size() - 1;
         }
@@ -704,6 +761,7 @@ class Importer {
         Scene scene;
         scene.materials = std::move(materials_);
         scene.camera = camera_;
+        scene.lights = std::move(lights_);
         for (std::size_t i = 0; i < pending_.size(); ++i) {
             if (polygons[i].empty()) {
                 note(pending_[i].item + (duplicates[i] > 0 ? ": every polygon repeats an earlier one in place, "
@@ -863,6 +921,8 @@ class Importer {
     std::size_t backFaces_ = 0;
     std::map<int, glm::dvec3> textureMeans_;
     std::optional<Camera> camera_;
+    std::vector<PunctualLight> lights_;
+    std::vector<std::uint32_t> nodePath_;  // the nodes from the root to the one visited
 };
 
 }  // namespace

@@ -1,5 +1,9 @@
 #include "radiosity/Scene.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 namespace rad {
 
 glm::dvec3 Polygon::normal() const {
@@ -54,7 +58,33 @@ std::optional<std::uint32_t> Scene::findObject(const std::string& name) const {
     return std::nullopt;
 }
 
+std::optional<std::uint32_t> Scene::findLight(const std::string& name) const {
+    for (std::uint32_t i = 0; i < lights.size(); ++i)
+        if (lights[i].name == name) return i;
+    return std::nullopt;
+}
+
+double PunctualLight::falloff(const glm::dvec3& toward) const {
+    if (type == Type::Point) return 1.0;
+    const double c = glm::dot(direction, toward);
+    const double cosInner = std::cos(innerCone), cosOuter = std::cos(outerCone);
+    if (c >= cosInner) return 1.0;
+    if (c <= cosOuter) return 0.0;
+    const double t = (c - cosOuter) / std::max(1e-12, cosInner - cosOuter);
+    return t * t;
+}
+
+double PunctualLight::solidAngle() const {
+    if (type == Type::Point) return 4.0 * std::numbers::pi;
+    // Inside the inner cone 2 pi (1 - cos inner); over the ramp, the square
+    // of a linear ramp in cos integrates to a third of its width.
+    const double cosInner = std::cos(innerCone), cosOuter = std::cos(outerCone);
+    return 2.0 * std::numbers::pi * ((1.0 - cosInner) + (cosInner - cosOuter) / 3.0);
+}
+
 bool Scene::hasEmitter() const {
+    for (const PunctualLight& l : lights)
+        if (l.power() > 0.0) return true;
     for (const Polygon& p : polygons) {
         const glm::dvec3& e = materials[p.material].emission;
         if (e.x > 0.0 || e.y > 0.0 || e.z > 0.0) return true;

@@ -96,6 +96,37 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
         energy.escaped += escaped[i];
         energy.backFaces += back[i];
     }
+    // Punctual lights: where their light goes, from directions spread evenly
+    // over the sphere, each weighted by the light's falloff.
+    for (const PunctualLight& light : scene.lights) {
+        const double power = light.power();
+        if (!(power > 0.0)) continue;
+        constexpr std::uint32_t kLightRays = 16384;
+        std::vector<double> weight(kLightRays, 0.0), missed(kLightRays, 0.0), backs(kLightRays, 0.0);
+        tbb::parallel_for(std::uint32_t(0), kLightRays, [&](std::uint32_t k) {
+            const glm::dvec2 q = hammersley(k, kLightRays);
+            const double z = 1.0 - 2.0 * q.x, s = std::sqrt(std::max(0.0, 1.0 - z * z));
+            const double phi = 2.0 * std::numbers::pi * q.y;
+            const glm::dvec3 dir(s * std::cos(phi), s * std::sin(phi), z);
+            weight[k] = light.falloff(dir);
+            if (!(weight[k] > 0.0)) return;
+            const auto hit = rays.intersect(light.position, dir, std::numeric_limits<double>::infinity());
+            if (!hit)
+                missed[k] = weight[k];
+            else if (!hit->front)
+                backs[k] = weight[k];
+        });
+        double total = 0.0, miss = 0.0, back = 0.0;
+        for (std::uint32_t k = 0; k < kLightRays; ++k) {
+            total += weight[k];
+            miss += missed[k];
+            back += backs[k];
+        }
+        if (total > 0.0) {
+            energy.escaped += power * miss / total;
+            energy.backFaces += power * back / total;
+        }
+    }
     energy.lost = energy.emitted - energy.absorbed - energy.escaped - energy.backFaces;
     energy.created = std::max(0.0, energy.absorbed - energy.emitted);
 }

@@ -50,13 +50,14 @@ double Solver::meanUncovered(const HElement& e) const {
 Solver::Down Solver::shareOf(const Down& down, const HElement& child, double meanUncovered) {
     if (!(meanUncovered > 1e-6)) return down;
     const double w = (1.0 - std::min(1.0, child.coverage)) / meanUncovered;
-    return Down{w * down.irradiance, w * down.formFactorSum};
+    return Down{w * down.irradiance, w * down.formFactorSum, down.direct};
 }
 
 Solver::Down Solver::surfaceDown(const HElement& e, const Down& down) {
     Down d = down;
     d.irradiance += e.irradiance;
     d.formFactorSum += e.formFactorSum;
+    d.direct += e.direct;
     return d;
 }
 
@@ -121,7 +122,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
     } else {
         const Down here = surfaceDown(e, down);
         if (e.isLeaf()) {
-            b = e.emission + e.reflectance * guarded(here.irradiance, here.formFactorSum);
+            b = e.emission + e.reflectance * (guarded(here.irradiance, here.formFactorSum) + here.direct);
             walk.change += e.area * std::abs(luminance(b - e.radiosity));
             walk.total += e.area * std::abs(luminance(b));
             e.peak = luminance(b);
@@ -180,7 +181,7 @@ glm::dvec3 Solver::radiosityBound() const {
     }
     glm::dvec3 bound(INFINITY);
     for (int c = 0; c < 3; ++c)
-        if (guard_ && rho[c] < 1.0) bound[c] = emission[c] / (1.0 - rho[c]);
+        if (guard_ && rho[c] < 1.0) bound[c] = (emission[c] + rho[c] * directBound_[c]) / (1.0 - rho[c]);
     return bound;
 }
 
@@ -314,7 +315,7 @@ SolveResult Solver::solve(const SolveSettings& settings,
 }
 
 void Solver::forEachLeaf(
-    const std::function<void(const HElement&, const glm::dvec3&, double)>& f) const {
+    const std::function<void(const HElement&, const glm::dvec3&, double, const glm::dvec3&)>& f) const {
     const std::function<void(ElementId, const Down&, const FacetArrivals&)> visit =
         [&](ElementId id, const Down& down, const FacetArrivals& facets) {
             const HElement& e = h_[id];
@@ -335,7 +336,7 @@ void Solver::forEachLeaf(
             }
             const Down here = surfaceDown(e, down);
             if (e.isLeaf()) {
-                f(e, here.irradiance, here.formFactorSum);
+                f(e, here.irradiance, here.formFactorSum, here.direct);
                 return;
             }
             const double uncovered = meanUncovered(e);
@@ -347,8 +348,8 @@ void Solver::forEachLeaf(
 
 EnergyBalance Solver::energy() const {
     EnergyBalance balance;
-    forEachLeaf([&](const HElement& e, const glm::dvec3& irradiance, double sum) {
-        const glm::dvec3 arriving = guarded(irradiance, sum);
+    forEachLeaf([&](const HElement& e, const glm::dvec3& irradiance, double sum, const glm::dvec3& direct) {
+        const glm::dvec3 arriving = guarded(irradiance, sum) + direct;
         balance.emitted += e.area * luminance(e.emission);
         balance.received += e.area * luminance(arriving);
         balance.absorbed += e.area * luminance((glm::dvec3(1.0) - e.reflectance) * arriving);
@@ -359,7 +360,7 @@ EnergyBalance Solver::energy() const {
 
 std::vector<GuardAction> Solver::guardActions(double threshold) const {
     std::map<std::uint32_t, GuardAction> byObject;
-    forEachLeaf([&](const HElement& e, const glm::dvec3&, double sum) {
+    forEachLeaf([&](const HElement& e, const glm::dvec3&, double sum, const glm::dvec3&) {
         if (!(sum > 1.0 + threshold)) return;
         GuardAction& a = byObject[e.object];
         a.object = e.object;

@@ -67,14 +67,18 @@ class Solver {
                       const std::function<void(int, double)>& progress = {});
     // The energy guard (on by default; off only to show what it prevents).
     void setEnergyGuard(bool on) { guard_ = on; }
+    // The largest direct irradiance from punctual lights at any point, per
+    // channel: it raises the bound no radiosity can exceed.
+    void setDirectBound(const glm::dvec3& bound) { directBound_ = bound; }
 
     EnergyBalance energy() const;
     // The objects where the energy guard divided by more than 1 + threshold.
     std::vector<GuardAction> guardActions(double threshold) const;
-    // Visits every surface leaf with the irradiance arriving there (before
-    // the guard) and its form-factor sum.
+    // Visits every surface leaf with the irradiance arriving there on links
+    // (before the guard), its form-factor sum and the irradiance punctual
+    // lights send it.
     void forEachLeaf(
-        const std::function<void(const HElement&, const glm::dvec3&, double)>& f) const;
+        const std::function<void(const HElement&, const glm::dvec3&, double, const glm::dvec3&)>& f) const;
 
   private:
     // What a surface element receives from above: irradiance and the sum of
@@ -82,6 +86,9 @@ class Solver {
     struct Down {
         glm::dvec3 irradiance{0.0};
         double formFactorSum = 0.0;
+        // From punctual lights (lights/LightLinks.h): not shared by
+        // coverage, not under the energy guard.
+        glm::dvec3 direct{0.0};
     };
     // The walk state of one descent: what the ancestor clusters' links bring,
     // and, for partial push-pulls, the elements visited.
@@ -138,6 +145,7 @@ class Solver {
     Hierarchy& h_;
     LinkStore& links_;
     bool guard_ = true;
+    glm::dvec3 directBound_{0.0};
 };
 
 }  // namespace rad

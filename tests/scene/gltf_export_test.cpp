@@ -139,7 +139,7 @@ TEST(GltfExport, ImportedSceneRoundTripsGeometry) {
     quad.vertices = {glm::dvec3(0, 0, 0), glm::dvec3(2, 0, 0), glm::dvec3(2, 3, 0),
                      glm::dvec3(0, 3, 0)};
     scene.polygons.push_back(quad);
-    scene.objects.push_back({"q", glm::dmat4(1.0), false, 0, 1});
+    scene.objects.push_back({"q", glm::dmat4(1.0), false, 0, 1, {}});
     TempDir dir;
     const fs::path file = dir / "preview.gltf";
     const MeshSnapshot mesh = makePreviewSnapshot(scene);

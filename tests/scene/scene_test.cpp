@@ -32,7 +32,7 @@ TEST(Scene, BoundsAndLookup) {
     Scene s;
     s.materials.push_back({"m", glm::dvec3(0.5), glm::dvec3(0.0)});
     s.polygons.push_back(unitSquare());
-    s.objects.push_back({"square", glm::dmat4(1.0), false, 0, 1});
+    s.objects.push_back({"square", glm::dmat4(1.0), false, 0, 1, {}});
     EXPECT_EQ(s.bounds().hi, glm::dvec3(1, 1, 0));
     EXPECT_EQ(s.findObject("square"), 0u);
     EXPECT_FALSE(s.findObject("missing").has_value());

@@ -60,6 +60,36 @@ struct Object {
     bool dynamic = false;  // extras.dynamic: a candidate for the dynamic object
     std::uint32_t firstPolygon = 0;
     std::uint32_t polygonCount = 0;
+    // The glTF nodes from a scene root down to the object's node (indices
+    // into the file's nodes): objects under one node share its prefix, so a
+    // selection can be widened to a parent's whole subtree.
+    std::vector<std::uint32_t> nodePath;
+};
+
+// A KHR_lights_punctual light: a point that sends radiant intensity
+// I(dir) = intensity * falloff(dir), in the scene's units of power per
+// steradian. A surface at distance r whose normal makes angle theta with the
+// direction to the light receives the irradiance I cos(theta) / r^2.
+struct PunctualLight {
+    enum class Type : std::uint8_t { Point, Spot };
+    std::string name;
+    Type type = Type::Point;
+    glm::dvec3 position{0.0};
+    glm::dvec3 direction{0.0, 0.0, -1.0};  // spot axis (the node's -Z), unit
+    glm::dvec3 intensity{0.0};             // colour times intensity, each channel >= 0
+    double innerCone = 0.0;                // spot, radians, 0 <= inner < outer <= pi/2
+    double outerCone = 0.7853981633974483;
+    glm::dmat4 worldFromLocal{1.0};  // the node's world transform (moves replace it)
+
+    // glTF's cone falloff toward `toward` (unit, from the light): 1 inside
+    // the inner cone, 0 outside the outer one, and between them the square
+    // of the linear ramp in cos(angle), as the extension's reference code.
+    // 1 everywhere for a point light.
+    double falloff(const glm::dvec3& toward) const;
+    // The integral of the falloff over the sphere of directions: the power
+    // sent is luminance(intensity) times it.
+    double solidAngle() const;
+    double power() const { return luminance(intensity) * solidAngle(); }
 };
 
 // A perspective camera looking down its local -Z axis.
@@ -77,12 +107,15 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Object> objects;
     std::vector<Polygon> polygons;
+    std::vector<PunctualLight> lights;
     std::optional<Camera> camera;
 
     Aabb bounds() const;
     Aabb objectBounds(std::uint32_t object) const;
     // Index of the object with this name, or nullopt.
     std::optional<std::uint32_t> findObject(const std::string& name) const;
+    std::optional<std::uint32_t> findLight(const std::string& name) const;
+    // Whether an emissive polygon or a punctual light sends any light.
     bool hasEmitter() const;
 };
 

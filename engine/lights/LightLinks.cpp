@@ -1,0 +1,216 @@
+#include "lights/LightLinks.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "links/FormFactor.h"
+#include "geometry/Shaft.h"
+
+namespace rad {
+
+void LightLinks::sizeTables() {
+    links_.resize(scene_.lights.size());
+    for (auto& perPolygon : links_) perPolygon.resize(scene_.polygons.size());
+}
+
+bool LightLinks::facesLight(const PunctualLight& light, std::uint32_t polygon) const {
+    const Polygon& p = scene_.polygons[polygon];
+    return glm::dot(p.normal(), light.position - p.vertices[0]) > 0.0;
+}
+
+LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId receiver) const {
+    const HElement& e = h_[receiver];
+    const SampleSet points = patchSamples(e.patch, kOrder);
+    // Per point: cos(theta) falloff / r^2; the distance kept off zero for a
+    // light that sits on the surface (its cosine is zero there anyway).
+    const double floor2 = 1e-6 * e.area;
+    std::array<double, kMaxOrder * kMaxOrder> g{};
+    std::array<RayCaster::Segment, RayCaster::kMaxSegments> segments;
+    std::array<std::size_t, RayCaster::kMaxSegments> of{};
+    std::size_t rays = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const glm::dvec3 d = light.position - points[i].p;
+        const double r2 = std::max(glm::dot(d, d), floor2);
+        const double r = std::sqrt(r2);
+        const glm::dvec3 toward = d / r;
+        const double cosTheta = glm::dot(e.normal, toward);
+        if (!(cosTheta > 0.0)) continue;
+        g[i] = light.falloff(-toward) * cosTheta / r2;
+        if (g[i] > 0.0 && rays < segments.size()) {
+            segments[rays] = {points[i].p, light.position, e.polygon, RayCaster::kNoPolygon};
+            of[rays++] = i;
+        }
+    }
+    if (rays > 0) {
+        const std::span<const RayCaster::Segment> span(segments.data(), rays);
+        const std::uint16_t blocked = rays_.blocked(Layer::Static, span) | rays_.blocked(Layer::Dynamic, span);
+        for (std::size_t k = 0; k < rays; ++k)
+            if (blocked & (1u << k)) g[of[k]] = 0.0;
+    }
+    Estimate out;
+    double lo = INFINITY, weight = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        out.mean += points[i].w * g[i];
+        weight += points[i].w;
+        lo = std::min(lo, g[i]);
+        out.peak = std::max(out.peak, g[i]);
+    }
+    if (weight > 0.0) out.mean /= weight;
+    out.spread = points.size() > 0 ? out.peak - lo : 0.0;
+    return out;
+}
+
+void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>& polygons) {
+    const PunctualLight& light = scene_.lights[lightIndex];
+    const double intensity = luminance(light.intensity);
+    struct Item {
+        std::uint32_t polygon;
+        ElementId element;
+    };
+    std::vector<Item> frontier;
+    for (std::uint32_t p : polygons) {
+        links_[lightIndex][p].clear();
+        if (intensity > 0.0 && h_.polygonElement(p) != kNone && facesLight(light, p))
+            frontier.push_back({p, h_.polygonElement(p)});
+    }
+    std::vector<Estimate> estimates;
+    while (!frontier.empty()) {
+        estimates.assign(frontier.size(), Estimate{});
+        tbb::parallel_for(std::size_t(0), frontier.size(),
+                          [&](std::size_t i) { estimates[i] = estimate(light, frontier[i].element); });
+        std::vector<Item> next;
+        for (std::size_t i = 0; i < frontier.size(); ++i) {
+            const auto [polygon, e] = frontier[i];
+            const Estimate& est = estimates[i];
+            const bool refine = intensity * est.spread * h_[e].area > threshold_ && h_.canSubdivide(e);
+            if (refine) {
+                h_.subdivide(e);
+                for (ElementId c : h_[e].children) next.push_back({polygon, c});
+            } else if (est.mean > 0.0) {
+                links_[lightIndex][polygon].push_back(
+                    {e, static_cast<float>(est.mean), static_cast<float>(est.peak)});
+            }
+        }
+        frontier = std::move(next);
+    }
+}
+
+void LightLinks::sumDirect(std::uint32_t polygon) {
+    const ElementId top = h_.polygonElement(polygon);
+    if (top == kNone) return;
+    for (std::vector<ElementId> stack{top}; !stack.empty();) {
+        const ElementId e = stack.back();
+        stack.pop_back();
+        h_[e].direct = glm::dvec3(0.0);
+        h_[e].lit = false;
+        for (ElementId c : h_[e].children) stack.push_back(c);
+    }
+    for (std::size_t l = 0; l < links_.size(); ++l)
+        for (const LightLink& link : links_[l][polygon]) {
+            h_[link.receiver].direct += scene_.lights[l].intensity * double(link.irradiance);
+            h_[link.receiver].lit = true;
+        }
+}
+
+void LightLinks::linkAll() {
+    sizeTables();
+    std::vector<std::uint32_t> all(scene_.polygons.size());
+    for (std::uint32_t p = 0; p < all.size(); ++p) all[p] = p;
+    for (std::uint32_t l = 0; l < scene_.lights.size(); ++l) link(l, all);
+    for (std::uint32_t p : all) sumDirect(p);
+}
+
+std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& polygons,
+                                          std::optional<std::uint32_t> light) {
+    sizeTables();
+    std::vector<ElementId> changed;
+    if (scene_.lights.empty()) return changed;
+    // What each polygon held before, to tell which changed.
+    std::vector<std::vector<std::vector<LightLink>>> before(links_.size());
+    for (std::size_t l = 0; l < links_.size(); ++l)
+        for (std::uint32_t p : polygons) before[l].push_back(links_[l][p]);
+    for (std::uint32_t l = 0; l < scene_.lights.size(); ++l)
+        if (!light || *light == l) link(l, polygons);
+    for (std::size_t i = 0; i < polygons.size(); ++i) {
+        bool same = true;
+        for (std::size_t l = 0; l < links_.size(); ++l) same = same && before[l][i] == links_[l][polygons[i]];
+        if (same) continue;
+        sumDirect(polygons[i]);
+        changed.push_back(h_.polygonElement(polygons[i]));
+    }
+    return changed;
+}
+
+std::vector<ElementId> LightLinks::relinkLight(std::uint32_t light) {
+    std::vector<std::uint32_t> all(scene_.polygons.size());
+    for (std::uint32_t p = 0; p < all.size(); ++p) all[p] = p;
+    return relink(all, light);
+}
+
+std::vector<ElementId> LightLinks::refreshIntensity(std::uint32_t light) {
+    sizeTables();
+    std::vector<ElementId> changed;
+    for (std::uint32_t p = 0; p < scene_.polygons.size(); ++p) {
+        if (links_[light][p].empty()) continue;
+        sumDirect(p);
+        changed.push_back(h_.polygonElement(p));
+    }
+    // A light that was dark has no links yet: it is linked now.
+    if (changed.empty() && luminance(scene_.lights[light].intensity) > 0.0) return relinkLight(light);
+    return changed;
+}
+
+std::vector<std::uint32_t> LightLinks::shadedBy(const std::vector<Aabb>& boxes) const {
+    std::vector<std::uint8_t> hit(scene_.polygons.size(), 0);
+    tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(scene_.polygons.size()), [&](std::uint32_t p) {
+        const Polygon& poly = scene_.polygons[p];
+        Aabb box;
+        for (int k = 0; k < poly.vertexCount; ++k) box.extend(poly.vertices[k]);
+        for (const PunctualLight& light : scene_.lights) {
+            if (!facesLight(light, p)) continue;
+            const Aabb at{light.position, light.position};
+            for (const Aabb& b : boxes) {
+                if (b.empty() || !Shaft::hullMeets(at, box, b)) continue;
+                if (Shaft(at, box).intersects(b)) {
+                    hit[p] = 1;
+                    return;
+                }
+            }
+        }
+    });
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t p = 0; p < hit.size(); ++p)
+        if (hit[p]) out.push_back(p);
+    return out;
+}
+
+glm::dvec3 LightLinks::directBound() const {
+    glm::dvec3 bound(0.0);
+    for (std::size_t l = 0; l < links_.size(); ++l) {
+        double peak = 0.0;
+        for (const auto& perPolygon : links_[l])
+            for (const LightLink& link : perPolygon) peak = std::max(peak, double(link.peak));
+        bound += scene_.lights[l].intensity * peak;
+    }
+    return bound;
+}
+
+std::size_t LightLinks::linkCount() const {
+    std::size_t n = 0;
+    for (const auto& perLight : links_)
+        for (const auto& perPolygon : perLight) n += perPolygon.size();
+    return n;
+}
+
+std::size_t LightLinks::memoryBytes() const {
+    std::size_t bytes = 0;
+    for (const auto& perLight : links_) {
+        bytes += perLight.capacity() * sizeof(perLight[0]);
+        for (const auto& perPolygon : perLight) bytes += perPolygon.capacity() * sizeof(LightLink);
+    }
+    return bytes;
+}
+
+}  // namespace rad

@@ -1,0 +1,93 @@
+#pragma once
+// Punctual lights (KHR_lights_punctual) in the hierarchy. A light is a point
+// with an intensity per direction, not a surface: it has no H-element, and
+// its light reaches surface elements through light links, one per receiver.
+// A light link holds the irradiance the light sends to its receiver per unit
+// of intensity, I cos(theta) falloff / r^2 averaged over the receiver's
+// quadrature points, each point counted only when its visibility ray to the
+// light is free in both layers (sec. 3.4). A receiver is subdivided while
+// that irradiance varies across it by more than the refinement threshold
+// allows: the paper's B F A_r criterion becomes the spread of the irradiance
+// times the receiver's area. Shadow edges, spot rims and walls near a light
+// refine; a floor far from it does not.
+//
+// What the links bring is each element's `direct` irradiance. The solver adds
+// it under the energy guard's reach (a light is not a surface that form
+// factors see) and pushes it down the quadtree whole.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "geometry/RayCaster.h"
+#include "hierarchy/Hierarchy.h"
+#include "radiosity/Scene.h"
+
+namespace rad {
+
+class LightLinks {
+public:
+    // `scene` and `hierarchy` must outlive it; the lights are read from the
+    // scene each time (moves and edits change them there).
+    LightLinks(const Scene& scene, Hierarchy& hierarchy, const RayCaster& rays)
+        : scene_(scene), h_(hierarchy), rays_(rays) {}
+
+    // The refinement threshold: epsilon times the reference power. A receiver
+    // is subdivided while luminance(I) times the spread of its irradiance
+    // times its area exceeds it.
+    void setThreshold(double power) { threshold_ = power; }
+
+    // Links every light to every polygon, from scratch; sets every element's
+    // direct irradiance.
+    void linkAll();
+    // Links the given polygons again (after they or something between them
+    // and a light moved), to every light or to `light` only. Returns the
+    // polygons' surface elements whose direct light changed.
+    std::vector<ElementId> relink(const std::vector<std::uint32_t>& polygons,
+                                  std::optional<std::uint32_t> light = std::nullopt);
+    // Every polygon, for one light (it moved).
+    std::vector<ElementId> relinkLight(std::uint32_t light);
+    // The direct light summed again after `light`'s intensity changed.
+    // Returns the polygon elements it reaches.
+    std::vector<ElementId> refreshIntensity(std::uint32_t light);
+    // The polygons in front of some light whose shaft toward it meets one of
+    // the boxes.
+    std::vector<std::uint32_t> shadedBy(const std::vector<Aabb>& boxes) const;
+
+    // An upper bound, per channel, of the direct irradiance at any point.
+    glm::dvec3 directBound() const;
+    std::size_t linkCount() const;
+    std::size_t memoryBytes() const;
+
+    // Quadrature order over a receiver: order^2 points, one visibility ray each.
+    static constexpr int kOrder = 4;
+
+private:
+    struct LightLink {
+        ElementId receiver = kNone;
+        float irradiance = 0.0f;  // per unit intensity, mean over the receiver, visibility included
+        float peak = 0.0f;        // the largest value at a quadrature point
+        bool operator==(const LightLink&) const = default;
+    };
+    struct Estimate {
+        double mean = 0.0, spread = 0.0, peak = 0.0;
+    };
+    // The irradiance per unit intensity at the receiver's quadrature points.
+    Estimate estimate(const PunctualLight& light, ElementId receiver) const;
+    // Refines the links of one light to the given polygons, level by level:
+    // the estimates of a level on all cores, its subdivisions in order.
+    void link(std::uint32_t light, const std::vector<std::uint32_t>& polygons);
+    // Clears the direct light of a polygon's quadtree and adds every light's
+    // links to it; whether anything changed is for the caller to know.
+    void sumDirect(std::uint32_t polygon);
+    bool facesLight(const PunctualLight& light, std::uint32_t polygon) const;
+    void sizeTables();
+
+    const Scene& scene_;
+    Hierarchy& h_;
+    const RayCaster& rays_;
+    double threshold_ = 0.0;
+    std::vector<std::vector<std::vector<LightLink>>> links_;  // [light][polygon]
+};
+
+}  // namespace rad

@@ -1,0 +1,232 @@
+// Punctual lights (KHR_lights_punctual), written into glTF files as a
+// modelling tool writes them, checked against closed forms: a point light of
+// intensity I at height h over the centre of a square floor of side L and
+// reflectance rho, nothing else, gives the floor a mean radiosity of
+// rho I Omega / L^2, Omega the solid angle of the floor seen from the light.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "radiosity/Engine.h"
+#include "radiosity/Gltf.h"
+#include "support/GltfBuilder.h"
+#include "support/TempDir.h"
+
+namespace rad {
+namespace {
+
+using test::GltfBuilder;
+using test::TempDir;
+
+// Solid angle of a 2a x 2a square seen from a point at height h over its centre.
+double squareSolidAngle(double a, double h) { return 4.0 * std::asin(a * a / (a * a + h * h)); }
+
+std::string number(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+// A horizontal square of side 2a at height y, centred on the axis, facing
+// up (+Y) or down.
+int addSquare(GltfBuilder& g, const std::string& name, double a, double y, bool up, int material) {
+    const float fa = static_cast<float>(a), fy = static_cast<float>(y);
+    std::vector<glm::vec3> p = {{-fa, fy, -fa}, {-fa, fy, fa}, {fa, fy, fa}, {fa, fy, -fa}};
+    if (!up) std::swap(p[1], p[3]);
+    const int mesh = g.addMesh(name, g.addPositions(p), g.addIndices({0, 1, 2, 0, 2, 3}), material);
+    return g.addNode("\"name\":\"" + name + "\",\"mesh\":" + std::to_string(mesh));
+}
+
+// The lights section and a node per light: `lights` is the JSON array.
+void addLights(GltfBuilder& g, const std::string& lights) {
+    g.extraTopLevel = "\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{\"KHR_lights_punctual\":{"
+                      "\"lights\":" + lights + "}},";
+}
+
+int addLightNode(GltfBuilder& g, const std::string& name, int light, const glm::dvec3& at,
+                 const std::string& rotation = "") {
+    return g.addNode("\"name\":\"" + name + "\",\"translation\":[" + number(at.x) + "," + number(at.y) + "," +
+                     number(at.z) + "]" + rotation + ",\"extensions\":{\"KHR_lights_punctual\":{\"light\":" +
+                     std::to_string(light) + "}}");
+}
+
+double floorRadiosity(const Engine& engine, const std::string& name = "floor") {
+    for (const ObjectRadiosity& o : engine.objectRadiosity())
+        if (o.name == name) return luminance(o.radiosity);
+    ADD_FAILURE() << "no object " << name;
+    return 0.0;
+}
+
+constexpr double kRho = 0.5;
+
+// A floor of side 2a, a point light of intensity I at height h.
+Scene pointOverFloor(const TempDir& dir, double a, double h, double intensity) {
+    GltfBuilder g;
+    addSquare(g, "floor", a, 0.0, true, g.addGrey("grey", kRho));
+    addLights(g, "[{\"type\":\"point\",\"intensity\":" + number(intensity) + "}]");
+    addLightNode(g, "bulb", 0, {0.0, h, 0.0});
+    return loadGltf(g.writeEmbedded(dir).string());
+}
+
+TEST(PunctualLight, PointLightOverAFloorGivesTheClosedForm) {
+    TempDir dir;
+    for (const auto& [a, h] : {std::pair{1.0, 1.0}, std::pair{2.0, 0.5}}) {
+        const double intensity = 10.0;
+        Engine engine(pointOverFloor(dir, a, h, intensity), EngineSettings{});
+        engine.solve();
+        const double expected = kRho * intensity * squareSolidAngle(a, h) / (4.0 * a * a);
+        EXPECT_NEAR(floorRadiosity(engine), expected, 0.01 * expected) << "a " << a << " h " << h;
+        // Energy: the light's 4 pi I goes to the floor (the part in Omega)
+        // or escapes; nothing is lost.
+        const EnergyBalance e = engine.energy();
+        EXPECT_NEAR(e.emitted, 4.0 * std::numbers::pi * intensity, 1e-9 * e.emitted);
+        EXPECT_NEAR(e.received, intensity * squareSolidAngle(a, h), 0.01 * e.received);
+        EXPECT_LT(std::abs(e.lost), 0.01 * e.emitted);
+    }
+}
+
+// A spot light pointing down whose cone lands wholly on a floor: the floor
+// receives the spot's whole power, luminance(I) times the integral of glTF's
+// falloff (2 pi ((1 - cos inner) + (cos inner - cos outer) / 3)); a ring of
+// floor around it, outside the outer cone, gets nothing.
+TEST(PunctualLight, SpotLightSendsItsConeOnly) {
+    TempDir dir;
+    GltfBuilder g;
+    const double a = 0.6, h = 1.0, inner = 0.3, outer = 0.5, intensity = 20.0;  // cone radius 0.55 m
+    const int grey = g.addGrey("grey", kRho);
+    addSquare(g, "floor", a, 0.0, true, grey);
+    // The ring: four quads from |x|,|z| = a out to 3a, facing up.
+    const float fa = static_cast<float>(a), fb = static_cast<float>(3.0 * a);
+    std::vector<glm::vec3> ring = {{-fb, 0, -fb}, {-fb, 0, fb}, {-fa, 0, fb}, {-fa, 0, -fb},
+                                   {fa, 0, -fb},  {fa, 0, fb},  {fb, 0, fb},  {fb, 0, -fb},
+                                   {-fa, 0, fa},  {-fa, 0, fb}, {fa, 0, fb},  {fa, 0, fa},
+                                   {-fa, 0, -fb}, {-fa, 0, -fa}, {fa, 0, -fa}, {fa, 0, -fb}};
+    std::vector<std::uint32_t> idx;
+    for (std::uint32_t q = 0; q < 4; ++q)
+        for (std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) idx.push_back(4 * q + k);
+    g.addNode("\"name\":\"ring\",\"mesh\":" + std::to_string(g.addMesh("ring", g.addPositions(ring), g.addIndices(idx), grey)));
+    addLights(g, "[{\"type\":\"spot\",\"intensity\":" + number(intensity) + ",\"spot\":{\"innerConeAngle\":" +
+                     number(inner) + ",\"outerConeAngle\":" + number(outer) + "}}]");
+    // The node's -Z turned to -Y: a quarter turn about X.
+    const double s = std::sqrt(0.5);
+    addLightNode(g, "spot", 0, {0.0, h, 0.0}, ",\"rotation\":[" + number(-s) + ",0,0," + number(s) + "]");
+    Engine engine(loadGltf(g.writeEmbedded(dir).string()), EngineSettings{});
+    engine.solve();
+    const double cone = 2.0 * std::numbers::pi * ((1.0 - std::cos(inner)) + (std::cos(inner) - std::cos(outer)) / 3.0);
+    const EnergyBalance e = engine.energy();
+    EXPECT_NEAR(e.emitted, intensity * cone, 1e-9 * e.emitted);
+    EXPECT_NEAR(e.received, intensity * cone, 0.01 * e.received);
+    const double expected = kRho * intensity * cone / (4.0 * a * a);
+    EXPECT_NEAR(floorRadiosity(engine), expected, 0.01 * expected);
+    EXPECT_EQ(floorRadiosity(engine, "ring"), 0.0);
+}
+
+// A black square between the light and the floor takes its solid angle out
+// of what the floor gets, whatever the sampling: rho I (Omega_floor -
+// Omega_blocker) / L^2.
+TEST(PunctualLight, ABlockerCastsItsShadow) {
+    TempDir dir;
+    GltfBuilder g;
+    const double a = 2.0, h = 2.0, b = 0.3, y = 1.0, intensity = 10.0;
+    addSquare(g, "floor", a, 0.0, true, g.addGrey("grey", kRho));
+    addSquare(g, "blocker", b, y, true, g.addGrey("black", 0.0));
+    addLights(g, "[{\"type\":\"point\",\"intensity\":" + number(intensity) + "}]");
+    addLightNode(g, "bulb", 0, {0.0, h, 0.0});
+    Engine engine(loadGltf(g.writeEmbedded(dir).string()), EngineSettings{});
+    engine.solve();
+    const double expected =
+        kRho * intensity * (squareSolidAngle(a, h) - squareSolidAngle(b, h - y)) / (4.0 * a * a);
+    EXPECT_NEAR(floorRadiosity(engine), expected, 0.01 * expected);
+}
+
+// A light is moved like any object, by name: the update equals a solve of
+// the scene with the light where it ended, and dimming it to zero leaves
+// the floor dark.
+TEST(PunctualLight, MovedAndDimmedLikeAnObject) {
+    TempDir dir;
+    const double a = 1.0, h = 1.0, intensity = 10.0;
+    Engine engine(pointOverFloor(dir, a, h, intensity), EngineSettings{});
+    engine.solve();
+    const glm::dvec3 to(0.4, 0.8, -0.3);
+    engine.moveObjects({{"bulb", glm::translate(glm::dmat4(1.0), to)}});
+    Scene moved = pointOverFloor(dir, a, h, intensity);
+    moved.lights[0].position = to;
+    Engine fresh(std::move(moved), EngineSettings{});
+    fresh.solve();
+    EXPECT_NEAR(floorRadiosity(engine), floorRadiosity(fresh), 0.01 * floorRadiosity(fresh));
+    EXPECT_GT(std::abs(floorRadiosity(engine) - kRho * intensity * squareSolidAngle(a, h) / (4.0 * a * a)),
+              0.05 * floorRadiosity(fresh));  // it did move the light
+
+    engine.editMaterial("bulb", glm::dvec3(0.0), std::nullopt);
+    EXPECT_EQ(floorRadiosity(engine), 0.0);
+    engine.editMaterial("bulb", glm::dvec3(2.0 * intensity), std::nullopt);
+    EXPECT_NEAR(floorRadiosity(engine), 2.0 * floorRadiosity(fresh), 0.01 * floorRadiosity(fresh));
+    EXPECT_THROW(engine.editMaterial("bulb", std::nullopt, glm::dvec3(0.5)), std::invalid_argument);
+}
+
+// An object that moves into the light's path casts its shadow, and leaving
+// takes it away: the update equals a solve of the scene as it ends.
+TEST(PunctualLight, AMovingBlockerShadowsThroughTheUpdate) {
+    TempDir dir;
+    GltfBuilder g;
+    const double a = 2.0, h = 2.0, b = 0.3, y = 1.0, intensity = 10.0;
+    addSquare(g, "floor", a, 0.0, true, g.addGrey("grey", kRho));
+    addSquare(g, "blocker", b, y, true, g.addGrey("black", 0.0));
+    addLights(g, "[{\"type\":\"point\",\"intensity\":" + number(intensity) + "}]");
+    addLightNode(g, "bulb", 0, {0.0, h, 0.0});
+    const std::string file = g.writeEmbedded(dir).string();
+    Engine engine(loadGltf(file), EngineSettings{});
+    engine.solve();
+    const double shadowed = floorRadiosity(engine);
+    // Out of the way: far to the side, above the light's height.
+    engine.moveObjects({{"blocker", glm::translate(glm::dmat4(1.0), glm::dvec3(3.0, 2.0, 0.0))}});
+    const double open = kRho * intensity * squareSolidAngle(a, h) / (4.0 * a * a);
+    EXPECT_NEAR(floorRadiosity(engine), open, 0.01 * open);
+    engine.moveObjects({{"blocker", glm::dmat4(1.0)}});
+    EXPECT_NEAR(floorRadiosity(engine), shadowed, 0.001 * shadowed);
+}
+
+TEST(PunctualLight, BadLightsAreOneLineErrors) {
+    TempDir dir;
+    const auto errorFor = [&](const std::string& light) {
+        GltfBuilder g;
+        addSquare(g, "floor", 1.0, 0.0, true, g.addGrey("grey", kRho));
+        addLights(g, "[" + light + "]");
+        addLightNode(g, "bulb", 0, {0.0, 1.0, 0.0});
+        try {
+            loadGltf(g.writeEmbedded(dir).string());
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string negative = errorFor("{\"name\":\"L\",\"type\":\"point\",\"intensity\":-1}");
+    EXPECT_NE(negative.find("light 'L'"), std::string::npos) << negative;
+    EXPECT_NE(negative.find("intensity"), std::string::npos) << negative;
+    const std::string cone =
+        errorFor("{\"name\":\"S\",\"type\":\"spot\",\"spot\":{\"innerConeAngle\":0.6,\"outerConeAngle\":0.5}}");
+    EXPECT_NE(cone.find("light 'S'"), std::string::npos) << cone;
+    EXPECT_NE(cone.find("cone"), std::string::npos) << cone;
+    EXPECT_NE(errorFor("{\"type\":\"point\",\"color\":[1,-1,1]}").find("color"), std::string::npos);
+    for (const std::string& e : {negative, cone}) EXPECT_EQ(e.find('\n'), std::string::npos);
+
+    // A directional light has no position: noted, and alone it lights nothing.
+    GltfBuilder g;
+    addSquare(g, "floor", 1.0, 0.0, true, g.addGrey("grey", kRho));
+    addLights(g, "[{\"type\":\"directional\"}]");
+    addLightNode(g, "sun", 0, {0.0, 1.0, 0.0});
+    ImportNotes notes;
+    const Scene s = loadGltf(g.writeEmbedded(dir).string(), &notes);
+    EXPECT_TRUE(s.lights.empty());
+    bool noted = false;
+    for (const std::string& line : notes.lines) noted = noted || line.find("directional") != std::string::npos;
+    EXPECT_TRUE(noted);
+    EXPECT_THROW(Engine(s, EngineSettings{}), SceneError);
+}
+
+}  // namespace
+}  // namespace rad
