@@ -336,6 +336,16 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         else
             objects.emplace_back(*object, worldFromLocal);
     }
+    // A light under a moving object's node moves with it, unless it is
+    // moved itself.
+    for (const auto& [object, worldFromLocal] : objects)
+        for (std::uint32_t l = 0; l < s.scene.lights.size(); ++l) {
+            const PunctualLight& light = s.scene.lights[l];
+            if (light.object != s.scene.objects[object].name) continue;
+            if (std::any_of(lights.begin(), lights.end(), [&](const auto& m) { return m.first == l; })) continue;
+            lights.emplace_back(l, worldFromLocal * glm::inverse(s.scene.objects[object].worldFromLocal) *
+                                       light.worldFromLocal);
+        }
     // Objects not chosen yet join the dynamic layer first (paper sec. 3.3).
     double choosingSeconds = 0.0;
     for (const auto& [object, m] : objects)

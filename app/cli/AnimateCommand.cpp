@@ -148,7 +148,8 @@ int animate(const AnimateSettings& settings) {
     const AnimationRun run = runAnimation(
         scene, s.engine, request.moves, request.edits, request.frames, s.control,
         s.compareFull ? &references : nullptr, [&](int f, const Engine& engine, const FrameRecord* record) {
-            if (f == 0 && !request.object.empty() && !engine.scene().objects[*engine.scene().findObject(request.object)].dynamic) {
+            const auto object = request.object.empty() ? std::nullopt : engine.scene().findObject(request.object);
+            if (f == 0 && object && !engine.scene().objects[*object].dynamic) {
                 const ReinsertionStats& r = record->stats.reinsertion;
                 std::printf("'%s' is not marked dynamic: its cluster was attached to the root and relinked "
                             "(%zu links removed, %zu created) in %.3f s\n",

@@ -82,14 +82,23 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
         try {
             const FrameStats chosen = engine.setDynamicObject(moves[k].object);
             if (k == 0) {
-                run.markedDynamic = engine.scene().objects[objects[k]].dynamic;
+                // A light is not in the hierarchy: nothing to attach.
+                const auto object = engine.scene().findObject(moves[k].object);
+                run.markedDynamic = !object || engine.scene().objects[*object].dynamic;
                 run.selection = chosen;
             }
         } catch (const std::invalid_argument& e) {
             throw std::runtime_error(e.what());
         }
-        startTransform.push_back(engine.scene().objects[objects[k]].worldFromLocal);
-        center.push_back(engine.scene().objectBounds(objects[k]).center());
+        // A light turns about its position, an object about its box's centre.
+        if (const auto light = engine.scene().findLight(moves[k].object)) {
+            startTransform.push_back(engine.scene().lights[*light].worldFromLocal);
+            center.push_back(engine.scene().lights[*light].position);
+        } else {
+            const std::uint32_t object = *engine.scene().findObject(moves[k].object);
+            startTransform.push_back(engine.scene().objects[object].worldFromLocal);
+            center.push_back(engine.scene().objectBounds(object).center());
+        }
     }
     if (onFrame) {
         FrameRecord chosen;

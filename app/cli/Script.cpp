@@ -112,12 +112,18 @@ Script readScript(const std::string& path) {
 
 void checkScriptObjects(const Script& script, const std::string& path, const Scene& scene) {
     const auto check = [&](const std::string& name) {
+        if (scene.findLight(name)) return;  // a punctual light moves and dims like an object
         const auto o = scene.findObject(name);
         if (!o || scene.objects[*o].polygonCount == 0)
-            throw UsageError(path + ": no object '" + name + "' with polygons in " + scene.sourcePath);
+            throw UsageError(path + ": no object '" + name + "' with polygons and no light of that name in " +
+                             scene.sourcePath);
     };
     for (const ObjectMove& m : script.moves) check(m.object);
-    for (const Edit& e : script.edits) check(e.object);
+    for (const Edit& e : script.edits) {
+        check(e.object);
+        if (e.reflectance && scene.findLight(e.object))
+            throw UsageError(path + ": '" + e.object + "' is a punctual light: it has no reflectance");
+    }
 }
 
 }  // namespace rad::cli

@@ -304,7 +304,7 @@ class Importer {
         if (!node.weights.empty()) note(item + ": morph weights ignored");
         for (const auto& [name, value] : node.extensions)
             if (name == "KHR_lights_punctual")
-                visitLight(index, value, world, item);
+                visitLight(index, value, world, item, group ? pending_[*group].object.name : std::string());
             else
                 note(item + ": node extension " + name + " ignored");
         const bool dynamic = extrasFlag(node, "dynamic");
@@ -335,7 +335,8 @@ class Importer {
     // A node's KHR_lights_punctual light: point and spot lights become
     // lights of the scene, named after the node; directional ones have no
     // position and are left out with a note.
-    void visitLight(int nodeIndex, const tinygltf::Value& ext, const glm::dmat4& world, const std::string& item) {
+    void visitLight(int nodeIndex, const tinygltf::Value& ext, const glm::dmat4& world, const std::string& item,
+                    const std::string& object) {
         if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsNumber())
             fail(item, "KHR_lights_punctual has no light index");
         const int index = ext.Get("light").GetNumberAsInt();
@@ -375,6 +376,7 @@ class Importer {
         light.name = uniqueName(nodeIndex);
         light.intensity = color * l.intensity;
         light.worldFromLocal = world;
+        light.object = object;
         light.position = glm::dvec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
         const glm::dvec3 axis = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
         if (!(glm::length(axis) > 0.0)) fail(item, "transform collapses the light's direction");

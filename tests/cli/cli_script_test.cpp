@@ -8,6 +8,7 @@
 #include <string>
 
 #include "support/Cli.h"
+#include "support/GltfBuilder.h"
 #include "support/TempDir.h"
 #include "support/TestScenes.h"
 
@@ -47,6 +48,65 @@ TEST(CliScript, MovesAndEditsMatchAFullSolveEveryFrame) {
         EXPECT_LE(jsonAt(f, "/error_vs_full/worst_object_rms"), 0.05) << f.dump();
         EXPECT_GT(jsonAt(f, "/changed_elements"), 0);
     }
+}
+
+// A closed 4 x 3 x 4 m room lit by a KHR_lights_punctual point light, with a
+// box on the floor: the script carries the light across the room and dims
+// it; every frame matches a full solve of the scene as it then is.
+TEST(CliScript, APunctualLightMovesAndDimsInAScript) {
+    test::TempDir dir;
+    test::GltfBuilder g;
+    const int grey = g.addGrey("grey", 0.6);
+    // Quads as two triangles; `inward` turns the room's faces to its inside.
+    const auto addBox = [&](const std::string& name, glm::vec3 lo, glm::vec3 hi, bool inward) {
+        std::vector<glm::vec3> p;
+        std::vector<std::uint32_t> idx;
+        for (int axis = 0; axis < 3; ++axis)
+            for (int side = 0; side < 2; ++side) {
+                const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+                const auto base = static_cast<std::uint32_t>(p.size());
+                for (auto [a, b] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
+                    glm::vec3 q;
+                    q[axis] = side ? hi[axis] : lo[axis];
+                    q[u] = a ? hi[u] : lo[u];
+                    q[v] = b ? hi[v] : lo[v];
+                    p.push_back(q);
+                }
+                // (u, v) counter-clockwise faces +axis: outward on the high side.
+                const bool flip = (side == 0) != inward;
+                for (std::uint32_t k : flip ? std::vector<std::uint32_t>{0, 2, 1, 0, 3, 2}
+                                            : std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3})
+                    idx.push_back(base + k);
+            }
+        g.addNode("\"name\":\"" + name + "\",\"mesh\":" +
+                  std::to_string(g.addMesh(name, g.addPositions(p), g.addIndices(idx), grey)));
+    };
+    addBox("room", {0, 0, 0}, {4, 3, 4}, true);
+    addBox("box", {1.5f, 0, 1.5f}, {2.3f, 0.8f, 2.3f}, false);
+    g.extraTopLevel = R"("extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","color":[1,0.9,0.8],"intensity":40}]}},)";
+    g.addNode(R"("name":"bulb","translation":[1,2.5,1],"extensions":{"KHR_lights_punctual":{"light":0}})");
+    const std::string scene = g.writeEmbedded(dir).string();
+    const std::string script = writeScript(dir, "lamp.json", R"({"frames": 3, "actions": [
+        {"object": "bulb", "translate": [2, 0, 2]},
+        {"object": "bulb", "emission": [10, 9, 8]}]})");
+    const std::string report = (dir / "r.json").string();
+    const auto r = runCli("animate " + shellQuote(scene) + " --script " + shellQuote(script) +
+                          " --compare-full --report " + shellQuote(report));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const json doc = test::readJson(report);
+    EXPECT_EQ(jsonAt(doc, "/moving_objects"), json::array({"bulb"}));
+    const json frames = jsonAt(doc, "/frames");
+    ASSERT_EQ(frames.size(), 3u);
+    for (const json& f : frames) {
+        EXPECT_LE(jsonAt(f, "/error_vs_full/rms"), 0.01) << f.dump();
+        EXPECT_LE(jsonAt(f, "/error_vs_full/worst_object_rms"), 0.03) << f.dump();
+    }
+    // A light has no reflectance to set.
+    const std::string bad = writeScript(dir, "bad.json", R"({"frames": 1, "actions": [
+        {"object": "bulb", "reflectance": [0.5, 0.5, 0.5]}]})");
+    const auto e = runCli("animate " + shellQuote(scene) + " --script " + shellQuote(bad));
+    EXPECT_EQ(e.exitCode, 2) << e.output;
+    EXPECT_NE(e.output.find("punctual light"), std::string::npos) << e.output;
 }
 
 TEST(CliScript, TwoObjectsMoveAtOnce) {

@@ -190,6 +190,37 @@ TEST(PunctualLight, AMovingBlockerShadowsThroughTheUpdate) {
     EXPECT_NEAR(floorRadiosity(engine), shadowed, 0.001 * shadowed);
 }
 
+// A lamp: a node marked as one object, its shade and its bulb's light
+// child nodes. Moving the lamp carries the light: the update equals a solve
+// of the file with the lamp where it ended.
+TEST(PunctualLight, ALightUnderAMovingObjectMovesWithIt) {
+    TempDir dir;
+    const auto lampScene = [&](const glm::dvec3& at) {
+        GltfBuilder g;
+        addSquare(g, "floor", 2.0, 0.0, true, g.addGrey("grey", kRho));
+        const int shade = addSquare(g, "shade", 0.15, 0.2, false, g.addGrey("black", 0.0));
+        addLights(g, "[{\"type\":\"point\",\"intensity\":10}]");
+        const int bulb = addLightNode(g, "bulb", 0, {0.0, 0.0, 0.0});
+        g.roots = {0};
+        g.addNode("\"name\":\"lamp\",\"extras\":{\"object\":true},\"translation\":[" + number(at.x) + "," +
+                  number(at.y) + "," + number(at.z) + "],\"children\":[" + std::to_string(shade) + "," +
+                  std::to_string(bulb) + "]");
+        return loadGltf(g.writeEmbedded(dir, "lamp.gltf").string());
+    };
+    const glm::dvec3 from(0.0, 1.0, 0.0), to(0.7, 1.3, -0.5);
+    Engine engine(lampScene(from), EngineSettings{});
+    ASSERT_EQ(engine.scene().lights.size(), 1u);
+    EXPECT_EQ(engine.scene().lights[0].object, "lamp");
+    engine.solve();
+    const double before = floorRadiosity(engine);
+    engine.moveObjects({{"lamp", glm::translate(glm::dmat4(1.0), to)}});
+    Engine fresh(lampScene(to), EngineSettings{});
+    fresh.solve();
+    EXPECT_NEAR(engine.scene().lights[0].position.x, to.x, 1e-12);
+    EXPECT_NEAR(floorRadiosity(engine), floorRadiosity(fresh), 0.01 * floorRadiosity(fresh));
+    EXPECT_GT(std::abs(before - floorRadiosity(fresh)), 0.05 * floorRadiosity(fresh));
+}
+
 TEST(PunctualLight, BadLightsAreOneLineErrors) {
     TempDir dir;
     const auto errorFor = [&](const std::string& light) {

@@ -80,6 +80,10 @@ struct PunctualLight {
     double innerCone = 0.0;                // spot, radians, 0 <= inner < outer <= pi/2
     double outerCone = 0.7853981633974483;
     glm::dmat4 worldFromLocal{1.0};  // the node's world transform (moves replace it)
+    // The object whose subtree holds the light's node (a lamp marked
+    // extras.object, its bulb a child node): the light moves with it. Empty
+    // for a light of its own.
+    std::string object;
 
     // glTF's cone falloff toward `toward` (unit, from the light): 1 inside
     // the inner cone, 0 outside the outer one, and between them the square
