@@ -990,7 +990,7 @@ def building_floor(rooms_per_side=30):
                 holes = {'back': [north[i]]}
                 doorway(sb, tag + 'doorway', 2, north[i][0], north[i][1], door_h, zc1, zn0, mats['wall'])
             lx, lz, _ = place(3.0, 1.6)
-            room(sb, tag, (ox, 0.0, oz), (ox + W, H, oz + D), FURNISHED_ROOM_TILE, rm,
+            room(sb, tag, (ox, 0.0, oz), (ox + W, H, oz + D), FURNISHED_ROOM_TILE, rm, holes=holes,
                  lights=[(lx - 0.6, lx + 0.6, lz - 0.3, lz + 0.3)], light_mat=mats['light'])
             x, z, yaw = place(1.6, 0.46)
             add_desk(sb, tag + 'desk', x, z, yaw, mats)

@@ -145,6 +145,131 @@ std::optional<std::array<glm::dvec3, 4>> mergeToQuad(const WorldTriangle& a,
     return std::nullopt;
 }
 
+// A region of coplanar triangles merged into one convex polygon.
+struct MergedRegion {
+    std::array<glm::dvec3, 4> corners{};
+    std::uint8_t count = 0;
+    std::uint32_t material = 0;
+};
+
+// Takes out of `tris` every region of two or more triangles of one material,
+// in one plane and joined by shared edges (the same two vertices, in
+// opposite directions) and holding at least one sliver (kSliverShape),
+// whose union is a convex triangle or quad once the
+// vertices that lie on a straight stretch of its outline are dropped; returns
+// those polygons. CAD tools triangulate a wall with points along its edges
+// into long slivers; meshed as slivers, each gets its own elements and the
+// display streaks along them, meshed as the wall it is one quadtree. A
+// region whose outline is not one loop (a hole), or not convex with at most
+// four corners, keeps its triangles (the pair merge still applies).
+// A sliver: area under this share of its longest edge squared (about 1:10;
+// half a square has 0.25, an equilateral triangle 0.43).
+constexpr double kSliverShape = 0.05;
+
+std::vector<MergedRegion> mergeCoplanarRegions(std::vector<WorldTriangle>& tris) {
+    const std::size_t n = tris.size();
+    std::map<std::array<double, 3>, std::uint32_t> ids;
+    std::vector<std::array<std::uint32_t, 3>> vid(n);
+    for (std::size_t t = 0; t < n; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3& p = tris[t].v[k];
+            const auto [it, added] = ids.try_emplace({p.x, p.y, p.z}, static_cast<std::uint32_t>(ids.size()));
+            vid[t][k] = it->second;
+        }
+    const auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; };
+    std::unordered_map<std::uint64_t, std::uint32_t> owner;  // directed edge -> triangle
+    for (std::uint32_t t = 0; t < n; ++t)
+        for (int k = 0; k < 3; ++k) owner[key(vid[t][k], vid[t][(k + 1) % 3])] = t;
+    std::vector<std::uint32_t> parent(n);
+    for (std::uint32_t t = 0; t < n; ++t) parent[t] = t;
+    const auto find = [&](std::uint32_t t) {
+        while (parent[t] != t) t = parent[t] = parent[parent[t]];
+        return t;
+    };
+    std::vector<glm::dvec3> normal(n);
+    for (std::size_t t = 0; t < n; ++t) normal[t] = triangleNormal(tris[t]);
+    // Positions come as float32: normals within 1e-4 rad are one plane's.
+    const auto joins = [&](std::uint32_t t, std::uint32_t u) {
+        return tris[t].material == tris[u].material && glm::length(normal[t] - normal[u]) <= 1e-4;
+    };
+    for (std::uint32_t t = 0; t < n; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const auto it = owner.find(key(vid[t][(k + 1) % 3], vid[t][k]));
+            if (it != owner.end() && joins(t, it->second)) parent[find(t)] = find(it->second);
+        }
+    std::map<std::uint32_t, std::vector<std::uint32_t>> regions;
+    for (std::uint32_t t = 0; t < n; ++t) regions[find(t)].push_back(t);
+
+    std::vector<MergedRegion> out;
+    std::vector<bool> merged(n, false);
+    // Only regions with slivers: a tiled wall of well-shaped triangle pairs
+    // keeps its tiles (quads, by the pair merge), as its author laid them.
+    const auto sliver = [&](std::uint32_t t) {
+        double longest = 0.0;
+        for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(tris[t].v[(k + 1) % 3] - tris[t].v[k]));
+        return triangleArea(tris[t]) < kSliverShape * longest * longest;
+    };
+    for (const auto& [root, members] : regions) {
+        if (members.size() < 2 || std::none_of(members.begin(), members.end(), sliver)) continue;
+        // The outline: the directed edges whose reverse is not in the region.
+        std::map<std::uint32_t, std::uint32_t> next;
+        std::map<std::uint32_t, glm::dvec3> at;
+        bool manifold = true;
+        double area = 0.0;
+        glm::dvec3 sum(0.0);
+        for (std::uint32_t t : members) {
+            area += triangleArea(tris[t]);
+            sum += triangleArea(tris[t]) * normal[t];
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t a = vid[t][k], b = vid[t][(k + 1) % 3];
+                const auto rev = owner.find(key(b, a));
+                if (rev != owner.end() && find(rev->second) == root) continue;
+                manifold = manifold && next.emplace(a, b).second;
+                at[a] = tris[t].v[k];
+            }
+        }
+        if (!manifold || next.empty()) continue;
+        std::vector<glm::dvec3> loop;
+        std::uint32_t v = next.begin()->first;
+        for (std::size_t steps = 0; steps < next.size(); ++steps) {
+            loop.push_back(at[v]);
+            v = next[v];
+        }
+        if (v != next.begin()->first) continue;  // more than one loop: a hole, or pieces
+        // Drop the vertices on straight stretches of the outline.
+        for (bool dropped = true; dropped && loop.size() > 3;) {
+            dropped = false;
+            for (std::size_t i = 0; i < loop.size() && loop.size() > 3; ++i) {
+                const glm::dvec3 e1 = loop[i] - loop[(i + loop.size() - 1) % loop.size()];
+                const glm::dvec3 e2 = loop[(i + 1) % loop.size()] - loop[i];
+                if (glm::length(glm::cross(e1, e2)) <= 1e-5 * glm::length(e1) * glm::length(e2) &&
+                    glm::dot(e1, e2) > 0.0) {
+                    loop.erase(loop.begin() + static_cast<std::ptrdiff_t>(i));
+                    dropped = true;
+                }
+            }
+        }
+        if (loop.size() > 4 || glm::length(sum) <= 0.0) continue;
+        const glm::dvec3 nrm = glm::normalize(sum);
+        MergedRegion r;
+        r.count = static_cast<std::uint8_t>(loop.size());
+        r.material = tris[members[0]].material;
+        for (std::size_t i = 0; i < loop.size(); ++i) r.corners[i] = loop[i];
+        if (r.count == 4 && !strictlyConvex(r.corners, nrm)) continue;
+        // The union's area must be the triangles' (no overlap, nothing folded).
+        glm::dvec3 vector(0.0);
+        for (std::size_t i = 0; i < loop.size(); ++i) vector += glm::cross(loop[i], loop[(i + 1) % loop.size()]);
+        if (std::abs(0.5 * glm::dot(vector, nrm) - area) > 1e-6 * area) continue;
+        out.push_back(r);
+        for (std::uint32_t t : members) merged[t] = true;
+    }
+    std::vector<WorldTriangle> rest;
+    for (std::size_t t = 0; t < n; ++t)
+        if (!merged[t]) rest.push_back(tris[t]);
+    tris.swap(rest);
+    return out;
+}
+
 // A cell of the grid that finds duplicate polygons (Importer::dropDuplicates).
 struct CellKey {
     std::int64_t x, y, z;
@@ -756,6 +881,9 @@ class Importer {
         }
         notes_.degenerateTriangles += dropped;
         if (dropped > 0) note(std::to_string(dropped) + " degenerate triangle(s) dropped");
+        if (notes_.mergedRegionTriangles > 0)
+            note(std::to_string(notes_.mergedRegionTriangles) +
+                 " triangle(s) merged with their coplanar neighbours into convex polygons");
         if (backFaces_ > 0)
             note(std::to_string(backFaces_) + " polygon(s) of doubleSided materials given a back face of their own");
         const std::vector<std::size_t> duplicates = dropDuplicates(polygons, 1e-9 * std::sqrt(diagonal2));
@@ -880,8 +1008,28 @@ class Importer {
         return droppedPer;
     }
 
-    void appendPolygons(const std::vector<WorldTriangle>& tris, std::uint32_t object,
-                        std::vector<Polygon>& out) {
+    void appendPolygons(std::vector<WorldTriangle> tris, std::uint32_t object, std::vector<Polygon>& out) {
+        const auto emit = [&](Polygon p) {
+            out.push_back(p);
+            if (doubleSided_.count(p.material)) {
+                // Both faces reflect: the back is a polygon of its own, the
+                // same vertices in reverse order (a zero-thickness slab,
+                // which visibility separates), lit and drawn from its side.
+                std::reverse(p.vertices.begin(), p.vertices.begin() + p.vertexCount);
+                out.push_back(p);
+                ++backFaces_;
+            }
+        };
+        const std::size_t before = tris.size();
+        for (const MergedRegion& r : mergeCoplanarRegions(tris)) {
+            Polygon p;
+            p.material = r.material;
+            p.object = object;
+            p.vertexCount = r.count;
+            p.vertices = r.corners;
+            emit(p);
+        }
+        notes_.mergedRegionTriangles += before - tris.size();
         for (std::size_t i = 0; i < tris.size();) {
             Polygon p;
             p.material = tris[i].material;
@@ -898,15 +1046,7 @@ class Importer {
                 p.vertices = {tris[i].v[0], tris[i].v[1], tris[i].v[2], glm::dvec3(0.0)};
                 i += 1;
             }
-            out.push_back(p);
-            if (doubleSided_.count(p.material)) {
-                // Both faces reflect: the back is a polygon of its own, the
-                // same vertices in reverse order (a zero-thickness slab,
-                // which visibility separates), lit and drawn from its side.
-                std::reverse(p.vertices.begin(), p.vertices.begin() + p.vertexCount);
-                out.push_back(p);
-                ++backFaces_;
-            }
+            emit(p);
         }
     }
 

@@ -36,6 +36,10 @@ struct ImportNotes {
     std::vector<std::string> lines;  // things ignored or dropped, for the log
     std::size_t degenerateTriangles = 0;
     std::size_t mergedQuads = 0;
+    // Triangles whose coplanar region (one material, joined by shared edges)
+    // became one convex polygon: a CAD triangulation of a wall in slivers
+    // imports as the wall.
+    std::size_t mergedRegionTriangles = 0;
     // Polygons dropped because an earlier polygon (in node order) has the
     // same vertices in the same cyclic order, so faces the same way, after
     // the node transforms and quad merging. Equal means within 1e-9 of the
