@@ -43,7 +43,8 @@ struct Scratch {
 
 // Sorted vectors, not hash maps: a polygon has a few vertices on average,
 // and building a map per polygon per frame was most of the snapshot.
-void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vector<double>& weights, Scratch& scratch) {
+void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vector<double>& weights,
+                std::vector<std::uint32_t>& outline, Scratch& scratch) {
     std::vector<ElementId>& leaves = scratch.leaves;
     leaves.clear();
     collectLeaves(h, top, leaves);
@@ -98,7 +99,14 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
 
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
     const glm::vec3 normal(h[top].normal);
+    // The outline of the parametric domain: the unit square of a quad, the
+    // triangle (0,0), (1,0), (0,1) of a triangle, on the lattice.
+    const auto size = static_cast<std::int64_t>(scale);
+    const bool triangle = h[top].patch.n == 3;
     for (const Vertex& v : vertices) {
+        const LatticePoint& q = v.p;
+        if (q.i == 0 || q.j == 0 || (triangle ? q.i + q.j == size : (q.i == size || q.j == size)))
+            outline.push_back(static_cast<std::uint32_t>(mesh.positions.size()));
         mesh.positions.emplace_back(v.position);
         mesh.normals.push_back(normal);
         mesh.colors.emplace_back(v.value);
@@ -116,21 +124,23 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
 // Input polygons that meet edge to edge in one plane (a tiled wall) share
 // their vertices' values, so the tiling does not show as steps. Vertices are
 // matched by sorting their keys (on all cores), not by a hash map.
-void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vector<double>& weights) {
+void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vector<double>& weights,
+                          const std::vector<std::uint32_t>& outline) {
     const Aabb box = scene.bounds();
     const double cell = std::max(1e-300, 1e-6 * glm::length(box.extent()));
     struct Key {
         std::int64_t x, y, z, nx, ny, nz;
         auto operator<=>(const Key&) const = default;
     };
-    const std::size_t n = mesh.positions.size();
+    const std::size_t n = outline.size();
     std::vector<std::pair<Key, std::uint32_t>> keyed(n);
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+        const std::uint32_t i = outline[k];
         const glm::dvec3 p = (glm::dvec3(mesh.positions[i]) - box.lo) / cell;
         const glm::dvec3 nrm = glm::dvec3(mesh.normals[i]) * 1e3;
-        keyed[i] = {Key{std::llround(p.x), std::llround(p.y), std::llround(p.z), std::llround(nrm.x), std::llround(nrm.y),
+        keyed[k] = {Key{std::llround(p.x), std::llround(p.y), std::llround(p.z), std::llround(nrm.x), std::llround(nrm.y),
                         std::llround(nrm.z)},
-                    static_cast<std::uint32_t>(i)};
+                    i};
     });
     tbb::parallel_sort(keyed.begin(), keyed.end());
     for (std::size_t a = 0, b = 0; a < n; a = b) {
@@ -180,15 +190,12 @@ MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarch
 }
 
 void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh, SnapshotCache& cache) {
-    // Cleared, not freed: a frame's mesh reuses the last one's memory.
-    for (std::vector<glm::vec3>* v : {&mesh.positions, &mesh.normals, &mesh.colors, &mesh.linePositions, &mesh.lineColors})
-        v->clear();
-    mesh.indices.clear();
     // Polygons are meshed independently, on all cores; a polygon whose
     // signature is unchanged keeps its part. The parts are joined in polygon
     // order (the same mesh as one core makes from scratch).
     const std::size_t polygons = scene.polygons.size();
     cache.parts.resize(polygons);
+    std::vector<std::uint8_t> remeshed(polygons, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polygons, 16), [&](const tbb::blocked_range<std::size_t>& r) {
         Scratch scratch;
         for (std::size_t p = r.begin(); p < r.end(); ++p) {
@@ -199,22 +206,49 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
             for (std::vector<glm::vec3>* v : {&part.mesh.positions, &part.mesh.normals, &part.mesh.colors}) v->clear();
             part.mesh.indices.clear();
             part.weights.clear();
-            if (top != kNone) addPolygon(hierarchy, top, part.mesh, part.weights, scratch);
+            part.outline.clear();
+            if (top != kNone) addPolygon(hierarchy, top, part.mesh, part.weights, part.outline, scratch);
             part.signature = signature;
             part.valid = true;
+            remeshed[p] = 1;
         }
     });
-    std::vector<double> weights;
-    weights.reserve(mesh.positions.capacity());
-    for (const SnapshotCache::Part& part : cache.parts) {
-        const auto offset = static_cast<std::uint32_t>(mesh.positions.size());
-        mesh.positions.insert(mesh.positions.end(), part.mesh.positions.begin(), part.mesh.positions.end());
-        mesh.normals.insert(mesh.normals.end(), part.mesh.normals.begin(), part.mesh.normals.end());
-        mesh.colors.insert(mesh.colors.end(), part.mesh.colors.begin(), part.mesh.colors.end());
-        weights.insert(weights.end(), part.weights.begin(), part.weights.end());
-        for (std::uint32_t i : part.mesh.indices) mesh.indices.push_back(i + offset);
+    // Nothing re-meshed: the mesh assembled last time stands (a frame that
+    // changed no radiosity, as when the budget held every link update back).
+    const bool unchanged = std::none_of(remeshed.begin(), remeshed.end(), [](std::uint8_t r) { return r != 0; });
+    if (unchanged && cache.assembled && mesh.positions.size() == cache.vertices && mesh.indices.size() == cache.indices &&
+        mesh.linePositions.empty())
+        return;
+    // Each part's place in the mesh, then the parts copied on all cores.
+    std::vector<std::size_t> vertexAt(polygons + 1, 0), indexAt(polygons + 1, 0), outlineAt(polygons + 1, 0);
+    for (std::size_t p = 0; p < polygons; ++p) {
+        const SnapshotCache::Part& part = cache.parts[p];
+        vertexAt[p + 1] = vertexAt[p] + part.mesh.positions.size();
+        indexAt[p + 1] = indexAt[p] + part.mesh.indices.size();
+        outlineAt[p + 1] = outlineAt[p] + part.outline.size();
     }
-    smoothAcrossPolygons(scene, mesh, weights);
+    for (std::vector<glm::vec3>* v : {&mesh.positions, &mesh.normals, &mesh.colors}) v->resize(vertexAt[polygons]);
+    for (std::vector<glm::vec3>* v : {&mesh.linePositions, &mesh.lineColors}) v->clear();
+    mesh.indices.resize(indexAt[polygons]);
+    std::vector<double> weights(vertexAt[polygons]);
+    std::vector<std::uint32_t> outline(outlineAt[polygons]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polygons, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t p = r.begin(); p < r.end(); ++p) {
+            const SnapshotCache::Part& part = cache.parts[p];
+            const auto offset = static_cast<std::uint32_t>(vertexAt[p]);
+            std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
+            std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
+            std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
+            std::copy(part.weights.begin(), part.weights.end(), weights.begin() + offset);
+            for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
+                mesh.indices[indexAt[p] + i] = part.mesh.indices[i] + offset;
+            for (std::size_t i = 0; i < part.outline.size(); ++i) outline[outlineAt[p] + i] = part.outline[i] + offset;
+        }
+    });
+    smoothAcrossPolygons(scene, mesh, weights, outline);
+    cache.assembled = true;
+    cache.vertices = mesh.positions.size();
+    cache.indices = mesh.indices.size();
 }
 
 }  // namespace rad

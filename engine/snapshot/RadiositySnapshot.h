@@ -23,8 +23,15 @@ struct SnapshotCache {
         bool valid = false;
         MeshSnapshot mesh;            // positions, normals, colors; indices from 0
         std::vector<double> weights;  // per vertex: the leaf area around it
+        // The vertices on the polygon's outline: only they can meet another
+        // polygon's, so only they take part in smoothing across polygons.
+        std::vector<std::uint32_t> outline;
     };
     std::vector<Part> parts;  // per input polygon
+    // The mesh last assembled from the parts (its sizes): when no part
+    // changed, that mesh stands as it is.
+    bool assembled = false;
+    std::size_t vertices = 0, indices = 0;
 };
 
 // The same into `mesh`, reusing its memory and the parts in `cache`.
