@@ -179,6 +179,249 @@ Engine::Engine(Scene scene, const EngineSettings& settings) {
 
 Engine::~Engine() = default;
 
+namespace {
+
+// Engine::solve's progress: the share of its time done and the time left.
+//
+// The model, and why. A solve's time goes to rounds (every link judged and
+// the coarse ones refined, then sweeps to the round tolerance) and to a
+// final solve (sweeps to the asked tolerance). Both loops stop on quantities
+// that fall about geometrically, so what is left is projected from their
+// decay as measured in this solve rather than from fixed guesses:
+// - Sweeps: the solver stops once the change extrapolated as a geometric
+//   series, err = delta r / (1 - r), is under the tolerance. With r the
+//   ratio of the last sweeps' changes, that takes log(tol / err) / log(r)
+//   more sweeps, each as long as this solve's sweeps so far. While the
+//   change does not fall yet (the first sweep after a refinement), r is the
+//   last round's.
+// - Rounds: they stop after a round that refines fewer than 1/1000 of the
+//   links. Right after a refinement it is known whether that round is the
+//   last (the loop's own test). Otherwise the rounds to come are projected.
+//   A round refines the links whose source's radiosity changed enough since
+//   the last refinement, so the share of the links it refines is taken in
+//   proportion to C, the change of the radiosity over the round before
+//   (the sum of its sweeps' changes; the factor is the last round's share
+//   over the change before it), and C falls from round to round by the
+//   ratio its last two rounds measured. (On the scenes in scenes/ that
+//   factor stays within 2-3x from round to round, while the share's own
+//   ratio varies tenfold: round 1 refines for the direct light, round 2
+//   for the indirect, the later ones only correct.) Each refined link adds
+//   as many links as in the last round, and costs what one did there. A
+//   round sweeps until its change has decayed at r under the round
+//   tolerance, at least twice (the solver's test needs two sweeps); a sweep
+//   costs in proportion to the links.
+// - The final solve: from the error the rounds leave (their changes decayed
+//   at r) down to the asked tolerance, at least two sweeps.
+// - What follows the rounds (reinstating the links no longer needed;
+//   after the final solve compaction and sorting of the link lists) walks
+//   every link a few times: it is taken as kAfterSweeps sweeps at the
+//   final links (4 to 8 on the scenes in scenes/).
+// Until the decays have been measured (C's needs two rounds, r two falling
+// sweeps) a guess stands in: the fraction moves with it, but secondsLeft
+// stays absent. The refinement itself reports nothing while it runs: the
+// fraction moves at its end.
+class SolveClock {
+  public:
+    SolveClock(const Engine::Progress& progress, int maxRounds, double roundTolerance,
+               const SolveSettings& solve)
+        : progress_(progress),
+          maxRounds_(maxRounds),
+          maxSweeps_(solve.maxIterations),
+          roundTolerance_(roundTolerance),
+          finalTolerance_(solve.tolerance) {}
+
+    explicit operator bool() const { return bool(progress_); }
+
+    void refining(int round) { report("round " + std::to_string(round) + ": refining"); }
+    // After the refinement of `round`: links refined, links live before and
+    // after, its time, and whether the loop ends after this round's solve.
+    void refined(int round, std::size_t refined, std::size_t linksBefore, std::size_t links, double seconds,
+                 bool last) {
+        Round r;
+        r.refined = double(refined);
+        r.links = std::max(1.0, double(links));
+        if (refined > 0) r.growth = std::max(0.0, (double(links) - double(linksBefore)) / double(refined));
+        r.refineSeconds = seconds;
+        rounds_.push_back(r);
+        round_ = round;
+        last_ = last || round >= maxRounds_;
+    }
+    void startSolve(bool final) {
+        final_ = final;
+        solving_ = true;
+        solveStart_ = now();
+        changes_.clear();
+    }
+    // The solver's sweep `it` changed the radiosity by `change`.
+    void sweep(int it, double change) {
+        changes_.push_back(change);
+        if (std::chrono::duration<double>(now() - lastReport_).count() < kInterval) return;
+        std::ostringstream line;
+        line << (final_ ? std::string("final solve") : "round " + std::to_string(round_)) << ": sweep " << it
+             << ", change " << change;
+        report(line.str());
+    }
+    // The running solve ended after `sweeps`.
+    void solved(int sweeps) {
+        solving_ = false;
+        if (final_ || rounds_.empty() || changes_.empty()) return;
+        Round& r = rounds_.back();
+        r.sweeps = sweeps;
+        r.solveSeconds = std::chrono::duration<double>(now() - solveStart_).count();
+        r.lastChange = changes_.back();
+        for (double c : changes_) r.change += c;
+        r.ratio = ratio();
+    }
+    void report(const std::string& line) {
+        lastReport_ = now();
+        SolveProgress p;
+        p.line = line;
+        const std::optional<Estimate> left = estimate();
+        if (left && std::isfinite(left->seconds)) {
+            const double elapsed = std::chrono::duration<double>(lastReport_ - start_).count();
+            const double seconds = std::max(0.0, left->seconds);
+            // Never back, and 1 only at the end.
+            if (elapsed + seconds > 0.0)
+                fraction_ = std::max(fraction_, std::min(kBeforeEnd, elapsed / (elapsed + seconds)));
+            if (left->measured) p.secondsLeft = seconds;
+        }
+        p.fraction = fraction_;
+        progress_(p);
+    }
+    void finish(const std::string& line) {
+        fraction_ = 1.0;
+        progress_(SolveProgress{line, 1.0, 0.0});
+    }
+
+  private:
+    struct Round {
+        double refined = 0.0, links = 1.0;
+        double growth = 0.0;  // links added per link refined
+        double refineSeconds = 0.0;
+        int sweeps = 0;       // of its solve; 0 while it runs
+        double solveSeconds = 0.0, lastChange = 0.0;
+        double change = 0.0;  // C: the sum of its solve's changes
+        std::optional<double> ratio;  // of the changes at the end of its solve
+    };
+    struct Estimate {
+        double seconds = 0.0;
+        bool measured = true;  // false: a guess stood in for a decay
+    };
+    static constexpr double kInterval = 0.1;            // seconds between sweep reports
+    static constexpr double kBeforeEnd = 0.99;          // the fraction short of the end
+    // Before two rounds measured them: the share refined per change of the
+    // round before, and the decay of that change (typical of scenes/).
+    static constexpr double kGuessedSharePerChange = 0.2;
+    static constexpr double kGuessedChangeDecay = 0.1;
+    static constexpr double kGuessedRatio = 0.5;        // r before any solve measured it
+    static constexpr double kStopShare = 1e-3;          // Engine::solve's test
+    static constexpr double kAfterSweeps = 6.0;         // what follows the rounds, in sweeps
+
+    static std::chrono::steady_clock::time_point now() { return std::chrono::steady_clock::now(); }
+
+    // The ratio of the running solve's changes per sweep, over its last
+    // three sweeps; none while they do not fall.
+    std::optional<double> ratio() const {
+        const std::size_t n = changes_.size();
+        if (n < 2) return std::nullopt;
+        const std::size_t span = std::min<std::size_t>(3, n - 1);
+        const double a = changes_[n - 1 - span], b = changes_[n - 1];
+        if (!(a > 0.0) || !(b > 0.0) || !(b < a)) return std::nullopt;
+        return std::pow(b / a, 1.0 / double(span));
+    }
+    // Sweeps for a decay `r` per sweep to bring `error` under `tolerance`.
+    double sweepsFor(double error, double tolerance, double r) const {
+        if (!(error > tolerance)) return 0.0;
+        return std::min(double(maxSweeps_), std::ceil(std::log(tolerance / error) / std::log(r)));
+    }
+
+    std::optional<Estimate> estimate() const {
+        if (rounds_.empty()) return std::nullopt;  // nothing measured before the first refinement ends
+        Estimate e;
+        const Round& k = rounds_.back();
+        const Round* before = rounds_.size() >= 2 ? &rounds_[rounds_.size() - 2] : nullptr;
+        const int done = solving_ ? int(changes_.size()) : 0;
+        // The decay per sweep: the running solve's, else the last round's.
+        std::optional<double> decay = done > 0 ? ratio() : std::nullopt;
+        const bool running = bool(decay);
+        for (auto it = rounds_.rbegin(); !decay && it != rounds_.rend(); ++it) decay = it->ratio;
+        if (!decay) e.measured = false;
+        const double r = std::clamp(decay.value_or(kGuessedRatio), 0.01, 0.99);
+        // Seconds per sweep at round k's links.
+        double sweepSeconds = 0.0;
+        if (done > 0)
+            sweepSeconds = std::chrono::duration<double>(now() - solveStart_).count() / done;
+        else if (k.sweeps > 0)
+            sweepSeconds = k.solveSeconds / k.sweeps;
+        else if (before && before->sweeps > 0)
+            sweepSeconds = before->solveSeconds / before->sweeps * k.links / before->links;
+        else
+            e.measured = false;
+        // The running solve, the error it leaves and its change C.
+        double error = 0.0, change = k.change;
+        if (done > 0) {
+            const double tolerance = final_ ? finalTolerance_ : roundTolerance_;
+            const double last = changes_.back(), errorNow = last * r / (1.0 - r);
+            // The solver tests from its second sweep on.
+            double sweeps = sweepsFor(errorNow, tolerance, r);
+            if (!running) sweeps = std::max(1.0, sweeps);
+            e.seconds += sweeps * sweepSeconds;
+            error = errorNow * std::pow(r, sweeps);
+            change = last * r * (1.0 - std::pow(r, sweeps)) / (1.0 - r);
+            for (double c : changes_) change += c;
+        } else if (k.sweeps > 0) {
+            error = k.lastChange * r / (1.0 - r);
+        }
+        if (final_) {
+            e.seconds += kAfterSweeps * sweepSeconds;
+            return e;
+        }
+        // The rounds to come.
+        double links = k.links;
+        if (!last_) {
+            double sharePerChange = kGuessedSharePerChange, changeDecay = kGuessedChangeDecay;
+            if (before && before->change > 0.0 && change > 0.0) {
+                sharePerChange = k.refined / k.links / before->change;
+                changeDecay = std::min(0.9, change / before->change);
+            } else {
+                e.measured = false;
+            }
+            const double perRefined = k.refined > 0.0 ? k.refineSeconds / k.refined : 0.0;
+            for (int round = round_ + 1; round <= maxRounds_; ++round) {
+                const double share = std::min(1.0, sharePerChange * change);
+                // n = share L after the round, L = L before + growth n.
+                const double grown = links / std::max(0.1, 1.0 - k.growth * share);
+                const double refined = share * grown;
+                links = grown;
+                change *= changeDecay;
+                // A geometric series of sweeps summing to C starts at C (1 - r).
+                const double first = change * (1.0 - r);
+                const double sweeps =
+                    std::max(2.0, 1.0 + sweepsFor(first * r / (1.0 - r), roundTolerance_, r));
+                e.seconds += perRefined * refined + sweeps * sweepSeconds * links / k.links;
+                error = (error + change) * std::pow(r, sweeps);
+                if (refined < 1.0 || share < kStopShare) break;
+            }
+        }
+        // The final solve.
+        const double sweeps = std::max(2.0, 1.0 + sweepsFor(error, finalTolerance_, r));
+        e.seconds += (sweeps + kAfterSweeps) * sweepSeconds * links / k.links;
+        return e;
+    }
+
+    Engine::Progress progress_;
+    int maxRounds_, maxSweeps_;
+    double roundTolerance_, finalTolerance_;
+    std::chrono::steady_clock::time_point start_ = now(), lastReport_ = start_, solveStart_ = start_;
+    std::vector<Round> rounds_;
+    int round_ = 0;
+    bool last_ = false, final_ = false, solving_ = false;
+    std::vector<double> changes_;  // of the running solve's sweeps
+    double fraction_ = 0.0;
+};
+
+}  // namespace
+
 const SolveStats& Engine::solve(const Progress& progress) {
     State& s = *state_;
     SolveStats& st = s.stats;
@@ -193,30 +436,43 @@ const SolveStats& Engine::solve(const Progress& progress) {
     // refinement sees the lights.
     s.solver.pushPull();
     SolveResult r;
+    // A round's radiosity only guides the next refinement: a looser
+    // tolerance does (the last solve below meets the asked one).
+    SolveSettings roundSettings = s.settings.solve;
+    roundSettings.tolerance = std::max(roundSettings.tolerance, kRoundTolerance);
+    SolveClock clock(progress, s.settings.maxRefineRounds, roundSettings.tolerance, s.settings.solve);
+    // The solver's sweeps report to the clock (nothing without a callback).
+    const auto sweepReports = [&](bool final) -> std::function<void(int, double)> {
+        if (!clock) return {};
+        clock.startSolve(final);
+        return [&clock](int sweep, double change) { clock.sweep(sweep, change); };
+    };
     for (int round = 1; round <= s.settings.maxRefineRounds; ++round) {
+        if (clock) clock.refining(round);
         auto t = std::chrono::steady_clock::now();
+        const std::size_t linksBefore = s.links.liveCount();
         s.setOracles();
         const std::size_t refined = s.refiner.refineAll();
         st.refineSeconds += secondsSince(t);
         st.refineRounds = round;
+        // A round that refines almost nothing changes the radiosity too little
+        // for another round to find more worth refining.
+        const bool lastRound = refined == 0 || refined * 1000 < s.links.liveCount();
+        if (clock)
+            clock.refined(round, refined, linksBefore, s.links.liveCount(), secondsSince(t), lastRound);
         t = std::chrono::steady_clock::now();
-        // A round's radiosity only guides the next refinement: a looser
-        // tolerance does (the last solve below meets the asked one).
-        SolveSettings roundSettings = s.settings.solve;
-        roundSettings.tolerance = std::max(roundSettings.tolerance, kRoundTolerance);
-        r = s.solver.solve(roundSettings);
+        r = s.solver.solve(roundSettings, sweepReports(false));
         st.solveSeconds += secondsSince(t);
         st.iterations += r.iterations;
-        if (progress) {
+        if (clock) {
+            clock.solved(r.iterations);
             std::ostringstream line;
             line << "round " << round << ": refined " << refined << " links, " << s.links.liveCount()
                  << " links in all, " << r.iterations << " sweeps, change " << r.lastChange;
-            progress(line.str());
+            clock.report(line.str());
         }
         if (r.status != SolveResult::Status::Converged) break;
-        // A round that refines almost nothing changes the radiosity too little
-        // for another round to find more worth refining.
-        if (refined == 0 || refined * 1000 < s.links.liveCount()) break;
+        if (lastRound) break;
         if (round == s.settings.maxRefineRounds) st.message = "stopped refining after the round limit";
     }
     // Refinement made under an earlier round's radiosity that the final one
@@ -224,7 +480,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     if (r.status == SolveResult::Status::Converged) {
         s.updater.reinstateUnneeded();
         const auto t = std::chrono::steady_clock::now();
-        r = s.solver.solve(s.settings.solve);
+        r = s.solver.solve(s.settings.solve, sweepReports(true));
         st.solveSeconds += secondsSince(t);
         st.iterations += r.iterations;
     }
@@ -266,6 +522,11 @@ const SolveStats& Engine::solve(const Progress& progress) {
     anchorOracles(s.hierarchy);
     // First guess of a link update's cost: the refinement time per link made.
     s.budget = BudgetControl(st.refineSeconds / double(std::max<std::size_t>(1, st.links + st.passiveLinks)));
+    if (clock) {
+        std::ostringstream line;
+        line << "done: " << st.refineRounds << " rounds, " << st.iterations << " sweeps";
+        clock.finish(line.str());
+    }
     return st;
 }
 

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 
@@ -51,6 +52,7 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
         coloured(ImVec4(1.0f, 0.3f, 0.3f, 1.0f), s.status);
     else
         ImGui::TextWrapped("%s", s.status.c_str());
+    if (s.progress) ImGui::ProgressBar(std::clamp(*s.progress, 0.0f, 1.0f), ImVec2(-FLT_MIN, 0.0f), s.progressText.c_str());
     // More than a couple of warnings (the energy guard may name several
     // objects) scroll in a box of their own, so the controls stay in place.
     const bool box = s.warnings.size() > 2;

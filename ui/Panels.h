@@ -15,6 +15,10 @@ struct PanelState {
     std::string status;  // "solving: round 2 ..." / "solved" / an error
     bool error = false;  // status is an error, or why the solve did not converge
     bool solving = false;
+    // While solving: the share done (a bar under the status) and its text
+    // ("42%, about 3 s left").
+    std::optional<float> progress;
+    std::string progressText;
     // One line each: the import's (duplicates dropped) and the solve's
     // (memory limit, energy guard), as the CLI prints them.
     std::vector<std::string> warnings;

@@ -7,6 +7,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "cli/ProgressLines.h"
+
 namespace rad::cli {
 namespace {
 
@@ -68,9 +70,7 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
         startOf.push_back(engine.scene().materials[engine.scene().polygons[engine.scene().objects[*o].firstPolygon].material]);
     }
     const auto start = std::chrono::steady_clock::now();
-    engine.solve([&](const std::string& line) {
-        if (secondsSince(start) > 1.0) std::fprintf(stderr, "solve: %s\n", line.c_str());
-    });
+    engine.solve(progressOnStderr("solve"));
     run.solveSeconds = secondsSince(start);
     run.initial = engine.stats();
     if (!run.initial.converged) throw std::runtime_error("the initial solve did not converge: " + run.initial.message);
@@ -142,7 +142,7 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
             if (references->samples.size() < std::size_t(f)) {
                 const auto t = std::chrono::steady_clock::now();
                 Engine full(engine.scene(), settings);
-                full.solve();
+                full.solve(progressOnStderr("frame " + std::to_string(f) + " full solve"));
                 references->seconds.push_back(secondsSince(t));
                 references->samples.push_back(full.samples());
             }
@@ -154,7 +154,8 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
                     EngineSettings finer = settings;
                     finer.epsilon = *references->convergedEpsilon;
                     Engine converged(engine.scene(), finer);
-                    const SolveStats& st = converged.solve();
+                    const SolveStats& st =
+                        converged.solve(progressOnStderr("frame " + std::to_string(f) + " reference solve"));
                     if (!st.converged)
                         std::fprintf(stderr, "warning: the reference of frame %d (epsilon %g) did not converge: %s\n", f,
                                      finer.epsilon, st.message.c_str());

@@ -13,6 +13,7 @@
 #include "cli/Args.h"
 #include "cli/Commands.h"
 #include "cli/EngineOptions.h"
+#include "cli/ProgressLines.h"
 #include "cli/RenderOutput.h"
 #include "cli/Report.h"
 #include "cli/Warnings.h"
@@ -90,11 +91,7 @@ int solve(const SolveSettings& s) {
     const auto loaded = std::chrono::steady_clock::now();
 
     Engine engine(std::move(scene), s.engine);
-    // Progress only for solves long enough to wonder about.
-    const auto progress = [&](const std::string& line) {
-        if (seconds(start, std::chrono::steady_clock::now()) > 1.0) std::fprintf(stderr, "solve: %s\n", line.c_str());
-    };
-    const SolveStats& st = engine.solve(progress);
+    const SolveStats& st = engine.solve(progressOnStderr("solve"));
     const auto solved = std::chrono::steady_clock::now();
     std::printf("%zu polygons, %zu elements, %zu links, %zu p-links, %d sweeps, %.2f s\n", st.polygons, st.elements,
                 st.links, st.passiveLinks, st.iterations, seconds(start, solved));

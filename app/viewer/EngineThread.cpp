@@ -40,6 +40,8 @@ struct EngineThread::Worker {
 
     bool solving = true;
     std::string progress;
+    double progressFraction = 0.0;       // of the running solve
+    std::optional<double> secondsLeft;  // its estimate, once it has one
     std::string error;
     FrameStats frame;
     std::uint64_t moves = 0;
@@ -131,6 +133,8 @@ void EngineThread::run() {
         s->version = ++w.version;
         s->solving = w.solving;
         s->progress = w.progress;
+        s->progressFraction = w.progressFraction;
+        s->secondsLeft = w.secondsLeft;
         s->error = w.error;
         s->frame = w.frame;
         s->moves = w.moves;
@@ -231,13 +235,17 @@ void EngineThread::run() {
     auto solveEngine = [&]() -> bool {
         w.solving = true;
         w.progress = "building the hierarchy";
+        w.progressFraction = 0.0;
+        w.secondsLeft.reset();
         publish(false);
         try {
             w.engine.reset();
             w.engine = std::make_unique<Engine>(Scene(w.original), w.settings);
-            w.engine->solve([&](const std::string& line) {
+            w.engine->solve([&](const SolveProgress& p) {
                 if (quitRequested()) throw Cancelled{};
-                w.progress = line;
+                w.progress = p.line;
+                w.progressFraction = p.fraction;
+                w.secondsLeft = p.secondsLeft;
                 publish(false);
             });
             const auto current = w.selected;

@@ -49,6 +49,8 @@ struct ViewerSnapshot {
     std::shared_ptr<const MeshSnapshot> mesh;  // null before the first solve ends
     bool solving = true;
     std::string progress;  // the solve's last progress line
+    double progressFraction = 0.0;      // of the solve done (SolveProgress::fraction)
+    std::optional<double> secondsLeft;  // the solve's estimate of its time left, once it has one
     std::string error;     // why the engine could not solve, if it could not
     SolveStats solve;
     FrameStats frame;        // the last update (move or pending refinement)

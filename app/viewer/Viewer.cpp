@@ -293,6 +293,10 @@ int runViewer(const ViewerOptions& options) {
             } else if (snap->solving) {
                 ps.status = "solving: ";
                 ps.status += snap->progress;
+                ps.progress = static_cast<float>(snap->progressFraction);
+                ps.progressText = std::to_string(static_cast<int>(std::floor(100.0 * snap->progressFraction))) + "%";
+                if (snap->secondsLeft)
+                    ps.progressText += ", about " + std::to_string(std::max(1L, std::lround(*snap->secondsLeft))) + " s left";
             } else {
                 ps.status = snap->progress;
             }

@@ -19,6 +19,22 @@
 
 namespace rad {
 
+// How far a solve is (Engine::solve).
+struct SolveProgress {
+    // What it is doing: "round 2: refining", "round 2: sweep 6, change
+    // 0.013", "round 2: refined 1234 links, 56789 links in all, 6 sweeps,
+    // change 0.0016", "final solve: sweep 2, ...", "done: 4 rounds, 19 sweeps".
+    std::string line;
+    // The share of the solve's time done, in [0, 1]: never decreasing from
+    // one call to the next of one solve, 1 at the end (only there).
+    double fraction = 0.0;
+    // The time left, estimated from the decay of refinement and of the
+    // sweeps measured so far (the model: SolveClock in Engine.cpp); finite
+    // and >= 0. Absent until it rests on measurements rather than guesses
+    // (usually from the second round on).
+    std::optional<double> secondsLeft;
+};
+
 class Engine {
 public:
     // Throws SceneError for a scene that cannot be solved (nothing emits) and
@@ -28,10 +44,13 @@ public:
     Engine(const Engine&) = delete;
     Engine& operator=(const Engine&) = delete;
 
-    using Progress = std::function<void(const std::string&)>;
+    using Progress = std::function<void(const SolveProgress&)>;
     // Refines and solves to convergence (paper sec. 5: "no more links can be
     // refined for the given error threshold, and the energy balance has been
-    // computed using all links").
+    // computed using all links"). `progress` is called as each refinement
+    // round starts and ends, during the sweeps of each solve (at most ten
+    // times a second) and once at the end with fraction 1; an exception it
+    // throws leaves the solve (the engine is then unsolved, to be discarded).
     const SolveStats& solve(const Progress& progress = {});
 
     // The dynamic object (the one moveDynamicObject moves): the first object
