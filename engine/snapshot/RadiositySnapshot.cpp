@@ -122,36 +122,52 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
 }
 
 // Input polygons that meet edge to edge in one plane (a tiled wall) share
-// their vertices' values, so the tiling does not show as steps. Vertices are
-// matched by sorting their keys (on all cores), not by a hash map.
+// their vertices' values, so the tiling does not show as steps. Only the
+// vertices on polygon outlines can meet; they are matched by sorting their
+// keys (on all cores), not by a hash map.
+using Key = SnapshotCache::Key;
+
+Key vertexKey(const MeshSnapshot& mesh, std::uint32_t i, const glm::dvec3& origin, double cell) {
+    const glm::dvec3 p = (glm::dvec3(mesh.positions[i]) - origin) / cell;
+    const glm::dvec3 nrm = glm::dvec3(mesh.normals[i]) * 1e3;
+    return Key{std::llround(p.x), std::llround(p.y), std::llround(p.z), std::llround(nrm.x), std::llround(nrm.y),
+               std::llround(nrm.z)};
+}
+
+// The smoothed value of the group keyed[a, b): the area-weighted mean of
+// its members' own values, written to each; a single vertex keeps its own.
+template <class Own, class Weight>
+void smoothGroup(const std::vector<std::pair<Key, std::uint32_t>>& keyed, std::size_t a, std::size_t b,
+                 MeshSnapshot& mesh, const Own& own, const Weight& weight) {
+    glm::dvec3 sum(0.0);
+    double w = 0.0;
+    for (std::size_t k = a; k < b; ++k) {
+        sum += weight(keyed[k].second) * glm::dvec3(own(keyed[k].second));
+        w += weight(keyed[k].second);
+    }
+    for (std::size_t k = a; k < b; ++k)
+        mesh.colors[keyed[k].second] = w > 0.0 && b - a > 1 ? glm::vec3(sum / w) : own(keyed[k].second);
+}
+
 void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vector<double>& weights,
-                          const std::vector<std::uint32_t>& outline) {
+                          const std::vector<std::uint32_t>& outline, SnapshotCache& cache) {
     const Aabb box = scene.bounds();
-    const double cell = std::max(1e-300, 1e-6 * glm::length(box.extent()));
-    struct Key {
-        std::int64_t x, y, z, nx, ny, nz;
-        auto operator<=>(const Key&) const = default;
-    };
+    cache.keyOrigin = box.lo;
+    cache.keyCell = std::max(1e-300, 1e-6 * glm::length(box.extent()));
     const std::size_t n = outline.size();
-    std::vector<std::pair<Key, std::uint32_t>> keyed(n);
+    std::vector<std::pair<Key, std::uint32_t>>& keyed = cache.keyed;
+    keyed.resize(n);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
-        const std::uint32_t i = outline[k];
-        const glm::dvec3 p = (glm::dvec3(mesh.positions[i]) - box.lo) / cell;
-        const glm::dvec3 nrm = glm::dvec3(mesh.normals[i]) * 1e3;
-        keyed[k] = {Key{std::llround(p.x), std::llround(p.y), std::llround(p.z), std::llround(nrm.x), std::llround(nrm.y),
-                        std::llround(nrm.z)},
-                    i};
+        keyed[k] = {vertexKey(mesh, outline[k], cache.keyOrigin, cache.keyCell), outline[k]};
     });
     tbb::parallel_sort(keyed.begin(), keyed.end());
+    // Groups are disjoint: each is summed before any of it is written.
     for (std::size_t a = 0, b = 0; a < n; a = b) {
-        glm::dvec3 sum(0.0);
-        double w = 0.0;
         for (b = a; b < n && keyed[b].first == keyed[a].first; ++b) {
-            sum += weights[keyed[b].second] * glm::dvec3(mesh.colors[keyed[b].second]);
-            w += weights[keyed[b].second];
         }
-        if (w > 0.0 && b - a > 1)
-            for (std::size_t k = a; k < b; ++k) mesh.colors[keyed[k].second] = glm::vec3(sum / w);
+        if (b - a > 1)
+            smoothGroup(keyed, a, b, mesh, [&](std::uint32_t i) { return mesh.colors[i]; },
+                        [&](std::uint32_t i) { return weights[i]; });
     }
 }
 
@@ -178,6 +194,80 @@ std::uint64_t polygonSignature(const Hierarchy& h, ElementId top, std::vector<El
     }
     addVector(h[top].normal);
     return hash;
+}
+
+// The re-meshed parts written over their old places, when each kept its
+// vertex and index counts; false (nothing written) otherwise. The smoothing
+// groups any of their outline vertices were in or are in now are summed
+// again from the parts' own values, in key order as a full build sums them.
+bool patchInPlace(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint8_t>& remeshed) {
+    std::vector<std::size_t> changed;
+    for (std::size_t p = 0; p < remeshed.size(); ++p) {
+        if (!remeshed[p]) continue;
+        const SnapshotCache::Part& part = cache.parts[p];
+        if (part.mesh.positions.size() != cache.vertexAt[p + 1] - cache.vertexAt[p] ||
+            part.mesh.indices.size() != cache.indexAt[p + 1] - cache.indexAt[p])
+            return false;
+        changed.push_back(p);
+    }
+    if (changed.empty()) return true;
+    // The part a mesh vertex belongs to, and its own (unsmoothed) value and weight.
+    const auto partOf = [&](std::uint32_t v) {
+        return static_cast<std::size_t>(std::upper_bound(cache.vertexAt.begin(), cache.vertexAt.end(), std::size_t(v)) -
+                                        cache.vertexAt.begin() - 1);
+    };
+    const auto own = [&](std::uint32_t v) {
+        const std::size_t p = partOf(v);
+        return cache.parts[p].mesh.colors[v - cache.vertexAt[p]];
+    };
+    const auto weight = [&](std::uint32_t v) {
+        const std::size_t p = partOf(v);
+        return cache.parts[p].weights[v - cache.vertexAt[p]];
+    };
+    tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
+        const std::size_t p = changed[c];
+        const SnapshotCache::Part& part = cache.parts[p];
+        const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
+        std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
+        std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
+        std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
+        for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
+            mesh.indices[cache.indexAt[p] + i] = part.mesh.indices[i] + offset;
+    });
+    // Their outline vertices leave the sorted keys and come back under their new keys.
+    const auto inChanged = [&](std::uint32_t v) {
+        const std::size_t p = partOf(v);
+        return std::binary_search(changed.begin(), changed.end(), p);
+    };
+    std::vector<Key> touched;
+    std::vector<std::pair<Key, std::uint32_t>> kept, fresh;
+    kept.reserve(cache.keyed.size());
+    for (const auto& entry : cache.keyed) {
+        if (inChanged(entry.second))
+            touched.push_back(entry.first);
+        else
+            kept.push_back(entry);
+    }
+    for (std::size_t p : changed)
+        for (std::uint32_t local : cache.parts[p].outline) {
+            const auto v = static_cast<std::uint32_t>(cache.vertexAt[p] + local);
+            fresh.push_back({vertexKey(mesh, v, cache.keyOrigin, cache.keyCell), v});
+            touched.push_back(fresh.back().first);
+        }
+    std::sort(fresh.begin(), fresh.end());
+    cache.keyed.clear();
+    std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), std::back_inserter(cache.keyed));
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (const Key& key : touched) {
+        const auto lo = std::lower_bound(cache.keyed.begin(), cache.keyed.end(), key,
+                                         [](const auto& e, const Key& k) { return e.first < k; });
+        auto hi = lo;
+        while (hi != cache.keyed.end() && hi->first == key) ++hi;
+        smoothGroup(cache.keyed, std::size_t(lo - cache.keyed.begin()), std::size_t(hi - cache.keyed.begin()), mesh, own,
+                    weight);
+    }
+    return true;
 }
 
 }  // namespace
@@ -215,10 +305,12 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
     });
     // Nothing re-meshed: the mesh assembled last time stands (a frame that
     // changed no radiosity, as when the budget held every link update back).
-    const bool unchanged = std::none_of(remeshed.begin(), remeshed.end(), [](std::uint8_t r) { return r != 0; });
-    if (unchanged && cache.assembled && mesh.positions.size() == cache.vertices && mesh.indices.size() == cache.indices &&
-        mesh.linePositions.empty())
-        return;
+    // Parts re-meshed to the sizes they had: written in place.
+    const bool same = cache.assembled && mesh.positions.size() == cache.vertices &&
+                      mesh.indices.size() == cache.indices && mesh.linePositions.empty() &&
+                      cache.vertexAt.size() == polygons + 1 && scene.bounds().lo == cache.keyOrigin &&
+                      std::max(1e-300, 1e-6 * glm::length(scene.bounds().extent())) == cache.keyCell;
+    if (same && patchInPlace(mesh, cache, remeshed)) return;
     // Each part's place in the mesh, then the parts copied on all cores.
     std::vector<std::size_t> vertexAt(polygons + 1, 0), indexAt(polygons + 1, 0), outlineAt(polygons + 1, 0);
     for (std::size_t p = 0; p < polygons; ++p) {
@@ -245,10 +337,12 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
             for (std::size_t i = 0; i < part.outline.size(); ++i) outline[outlineAt[p] + i] = part.outline[i] + offset;
         }
     });
-    smoothAcrossPolygons(scene, mesh, weights, outline);
+    smoothAcrossPolygons(scene, mesh, weights, outline, cache);
     cache.assembled = true;
     cache.vertices = mesh.positions.size();
     cache.indices = mesh.indices.size();
+    cache.vertexAt = std::move(vertexAt);
+    cache.indexAt = std::move(indexAt);
 }
 
 }  // namespace rad

@@ -28,10 +28,22 @@ struct SnapshotCache {
         std::vector<std::uint32_t> outline;
     };
     std::vector<Part> parts;  // per input polygon
-    // The mesh last assembled from the parts (its sizes): when no part
-    // changed, that mesh stands as it is.
+    // The mesh last assembled from the parts: where each part starts in it,
+    // and the smoothing's sorted keys of the outline vertices (with the
+    // frame they were made in). When no part changed, that mesh stands as it
+    // is; when the parts that changed kept their sizes (a moved object, new
+    // radiosity), they are written in place and only the smoothing groups
+    // they were or are in are summed again.
     bool assembled = false;
     std::size_t vertices = 0, indices = 0;
+    std::vector<std::size_t> vertexAt, indexAt;  // per part, and the total last
+    struct Key {
+        std::int64_t x, y, z, nx, ny, nz;
+        auto operator<=>(const Key&) const = default;
+    };
+    std::vector<std::pair<Key, std::uint32_t>> keyed;  // sorted
+    glm::dvec3 keyOrigin{0.0};
+    double keyCell = 0.0;
 };
 
 // The same into `mesh`, reusing its memory and the parts in `cache`.
