@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "viewer/SelectionWidening.h"
+
 namespace rad::viewer {
 namespace {
 
@@ -57,6 +59,24 @@ struct EngineThread::Worker {
 
     double now() const {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    // Objects and lights share one numbering (ObjectInfo): the objects,
+    // then the lights.
+    const Scene& scene() const { return engine ? engine->scene() : original; }
+    std::optional<std::uint32_t> lightOf(std::uint32_t id) const {
+        const Scene& s = scene();
+        if (id < s.objects.size() || id - s.objects.size() >= s.lights.size()) return std::nullopt;
+        return static_cast<std::uint32_t>(id - s.objects.size());
+    }
+    const std::string& nameOf(std::uint32_t id) const {
+        const Scene& s = scene();
+        return id < s.objects.size() ? s.objects[id].name : s.lights[id - s.objects.size()].name;
+    }
+    bool exists(std::uint32_t id) const { return id < scene().objects.size() + scene().lights.size(); }
+    std::optional<std::uint32_t> find(const std::string& name) const {
+        const Scene& s = scene();
+        if (const auto light = s.findLight(name)) return static_cast<std::uint32_t>(s.objects.size() + *light);
+        return s.findObject(name);
     }
     // A move frame's budget comes from the target frame rate; an idle frame
     // (catching up) works until the target frame time is up.
@@ -154,6 +174,15 @@ void EngineThread::run() {
                 info.emission = m.emission;
                 info.reflectance = m.reflectance;
             }
+            info.nodePath = object.nodePath;
+            s->objects.push_back(std::move(info));
+        }
+        for (const PunctualLight& light : scene.lights) {
+            ObjectInfo info{light.name, true, light.worldFromLocal, {}};
+            info.bounds.extend(light.position);
+            info.emission = light.intensity;
+            info.light = true;
+            info.spot = light.type == PunctualLight::Type::Spot;
             s->objects.push_back(std::move(info));
         }
         if (w.engine && !w.solving && w.error.empty()) {
@@ -190,8 +219,14 @@ void EngineThread::run() {
         w.selected = object;
         w.selectionNote.clear();
         if (!object) return;
+        // Not in the selection here: added, or the selection was cleared (a
+        // plain click on one of several selected objects selects it alone).
+        if (w.lightOf(*object)) {  // a light: not in the hierarchy, nothing to attach
+            w.selection.push_back(*object);
+            return;
+        }
         const Object& o = w.engine->scene().objects[*object];
-        if (o.polygonCount > 0 && !wasIn) w.selection.push_back(*object);
+        if (o.polygonCount > 0) w.selection.push_back(*object);
         if (o.polygonCount == 0) {
             w.selectionNote = quoted(o.name, " has no polygons: it cannot be moved");
             return;
@@ -207,25 +242,68 @@ void EngineThread::run() {
         }
     };
 
+    // WidenSelection: every object under the node the selection shares (or
+    // its parent's); each joins as shift+click would add it.
+    auto widen = [&] {
+        const Scene& scene = w.engine->scene();
+        std::vector<std::optional<NodePath>> paths;
+        for (const Object& o : scene.objects)
+            paths.push_back(o.polygonCount > 0 ? std::optional(o.nodePath) : std::nullopt);
+        paths.resize(scene.objects.size() + scene.lights.size());  // lights: no path
+        const std::optional<Widening> wider = widenSelection(paths, w.selection);
+        if (!wider) {
+            const bool anObject = std::any_of(w.selection.begin(), w.selection.end(),
+                                              [&](std::uint32_t o) { return o < scene.objects.size(); });
+            w.selectionNote = !anObject ? "nothing to widen: select an object (a light has no glTF node path)"
+                                        : "nothing to widen: every object is selected";
+            return;
+        }
+        const std::optional<std::uint32_t> gizmo = w.selected;
+        std::size_t removed = 0, created = 0;
+        w.frame.reinsertion = {};
+        for (std::uint32_t o : wider->selection)
+            if (std::find(w.selection.begin(), w.selection.end(), o) == w.selection.end()) {
+                select(o, true);
+                removed += w.frame.reinsertion.removed;
+                created += w.frame.reinsertion.created;
+                w.frame.reinsertion = {};
+            }
+        w.selected = gizmo ? gizmo : std::optional(wider->selection.front());
+        std::ostringstream note;
+        note << wider->selection.size() << " selected: everything under ";
+        if (wider->prefix.empty())
+            note << "the scene's roots";
+        else
+            note << "glTF node " << wider->prefix.back();
+        if (created > 0) note << " (attached to the root: " << removed << " links removed, " << created << " created)";
+        w.selectionNote = note.str();
+    };
+
     // Moves objects in one frame (Engine::moveObjects; an object not chosen
     // yet is chosen first), logging each transform for the tests.
     auto applyMoves = [&](const std::vector<SetTransform>& transforms) {
         const Scene& scene = w.engine->scene();
         std::vector<std::pair<std::string, glm::dmat4>> moves;
         for (const SetTransform& m : transforms) {
-            if (m.object >= scene.objects.size()) continue;
-            const Object& o = scene.objects[m.object];
+            if (!w.exists(m.object)) continue;
+            const std::string& name = w.nameOf(m.object);
             if (w.options.log) {
                 std::ostringstream line;
-                line << "engine: transform " << o.name << " translation " << m.worldFromLocal[3][0] << ' '
+                line << "engine: transform " << name << " translation " << m.worldFromLocal[3][0] << ' '
                      << m.worldFromLocal[3][1] << ' ' << m.worldFromLocal[3][2];
                 w.options.log(line.str());
             }
-            if (o.polygonCount > 0) moves.emplace_back(o.name, m.worldFromLocal);
+            // A light moves by name too (its transform: scene.lights[i].worldFromLocal).
+            if (w.lightOf(m.object) || scene.objects[m.object].polygonCount > 0) moves.emplace_back(name, m.worldFromLocal);
         }
         if (moves.empty()) return;
         w.frame = w.engine->moveObjects(moves, w.update());
         for (const SetTransform& m : transforms) w.moved[m.object] = m.worldFromLocal;
+        // A light under a moved object's node went with it
+        // (PunctualLight::object): kept where it is now, for a re-solve.
+        for (std::uint32_t l = 0; l < scene.lights.size(); ++l)
+            if (l < w.original.lights.size() && scene.lights[l].worldFromLocal != w.original.lights[l].worldFromLocal)
+                w.moved[static_cast<std::uint32_t>(scene.objects.size() + l)] = scene.lights[l].worldFromLocal;
         ++w.moves;
         w.history.push_back({w.now(), w.frame.totalSeconds});
         while (!w.history.empty() && w.history.front().time < w.now() - w.options.historySeconds) w.history.pop_front();
@@ -250,10 +328,10 @@ void EngineThread::run() {
             });
             const auto current = w.selected;
             const std::vector<std::uint32_t> selection = w.selection;
-            for (const auto& [object, m] : w.moved) {
-                w.engine->setDynamicObject(w.engine->scene().objects[object].name);
-                w.frame = w.engine->moveDynamicObject(m);
-            }
+            // Objects and lights, each to where it was moved last.
+            std::vector<std::pair<std::string, glm::dmat4>> moves;
+            for (const auto& [id, m] : w.moved) moves.emplace_back(w.nameOf(id), m);
+            if (!moves.empty()) w.frame = w.engine->moveObjects(moves);
             for (const EditMaterial& e : w.edits) w.frame = w.engine->editMaterial(e.object, e.emission, e.reflectance);
             w.solving = false;
             w.progress = w.engine->stats().converged ? "solved" : w.engine->stats().message;
@@ -274,7 +352,7 @@ void EngineThread::run() {
     if (!solveEngine()) return;
     if (!w.options.select.empty()) {
         try {
-            const auto object = w.engine->scene().findObject(w.options.select);
+            const auto object = w.find(w.options.select);
             if (!object) {
                 std::string m = "--select: no object named '";
                 m += w.options.select;
@@ -331,7 +409,7 @@ void EngineThread::run() {
                             if (s.name.empty()) {
                                 select(std::nullopt);
                             } else {
-                                const auto object = w.engine->scene().findObject(s.name);
+                                const auto object = w.find(s.name);
                                 if (!object) {
                                     std::string m = "no object named '";
                                     m += s.name;
@@ -381,6 +459,10 @@ void EngineThread::run() {
                                     return;
                             w.frame = w.engine->editMaterial(e.object, e.emission, e.reflectance, w.update());
                             w.edits.push_back(e);
+                            changed = true;
+                        },
+                        [&](const WidenSelection&) {
+                            widen();
                             changed = true;
                         },
                         [&](const Quit&) {},

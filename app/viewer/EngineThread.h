@@ -26,10 +26,15 @@
 
 namespace rad::viewer {
 
+// One of the scene's objects, or one of its punctual lights: the snapshot
+// lists the objects first (their indices in Scene::objects) and then the
+// lights (light i at objects.size() + i, `light` set). Commands and the
+// selection name either by that index.
 struct ObjectInfo {
     std::string name;
-    // Has polygons: the gizmo may move it (any object can become the dynamic
-    // one; those marked dynamic in the file start under the root).
+    // Has polygons, or is a light: the gizmo may move it (any object can
+    // become the dynamic one; those marked dynamic in the file start under
+    // the root).
     bool movable = false;
     glm::dmat4 worldFromLocal{1.0};
     Aabb bounds;
@@ -37,6 +42,9 @@ struct ObjectInfo {
     // colour and light controls start from.
     glm::dvec3 emission{0.0};
     glm::dvec3 reflectance{0.0};
+    std::vector<std::uint32_t> nodePath{};  // Object::nodePath; empty for a light
+    bool light = false;  // a punctual light: bounds is its position, emission its intensity
+    bool spot = false;   // a spot light: it points down its local -Z
 };
 
 struct UpdateSample {
@@ -75,7 +83,7 @@ struct SetTransform {
     glm::dmat4 worldFromLocal{1.0};
 };
 struct SelectObject {
-    std::string name;  // empty: select nothing
+    std::string name;  // an object or a light; empty: select nothing
 };
 struct PickObject {
     glm::dvec3 origin{0.0};
@@ -101,14 +109,18 @@ struct EditMaterial {
     std::optional<glm::dvec3> emission;
     std::optional<glm::dvec3> reflectance;
 };
+// The P key: the selection widened to every object under the glTF node the
+// selected objects share, or under its parent when that is selected already
+// (viewer/SelectionWidening.h). The gizmo stays on its object.
+struct WidenSelection {};
 struct Quit {};
 using Command = std::variant<SetTransform, SetTransforms, SelectObject, PickObject, SetTargetFps, SetEpsilon,
-                            SetOverlays, EditMaterial, Quit>;
+                            SetOverlays, EditMaterial, WidenSelection, Quit>;
 
 struct EngineThreadOptions {
     double targetFps = 30.0;
     SnapshotOverlays overlays;
-    std::string select;  // object to select once solved
+    std::string select;  // object (or light) to select once solved
     // Called on the engine thread with one line per transform it receives
     // (--log-transforms); empty: silent.
     std::function<void(const std::string&)> log;

@@ -30,6 +30,7 @@
 #include "ui/Gizmo.h"
 #include "ui/Panels.h"
 #include "viewer/EngineThread.h"
+#include "viewer/LightMarkers.h"
 #include "viewer/OrbitCamera.h"
 #include "viewer/UndoHistory.h"
 #include "viewer/ViewerOptions.h"
@@ -37,12 +38,15 @@
 namespace rad::viewer {
 namespace {
 
+// After a light's name in the panel (the list, "selected:").
+constexpr const char* kLightMark = " (light)";
+
 constexpr const char* kNoDisplay =
     "radiosity-viewer: no display (DISPLAY is not set); use radiosity-cli for headless work "
     "(radiosity-cli --help)";
 
 struct KeyEvents {
-    bool toggleLinks = false, toggleChanged = false, quit = false, undo = false, redo = false;
+    bool toggleLinks = false, toggleChanged = false, quit = false, undo = false, redo = false, widen = false;
 };
 
 struct GlfwSession {
@@ -142,6 +146,7 @@ int runViewer(const ViewerOptions& options) {
         if (key == GLFW_KEY_C) k->toggleChanged = true;
         if (key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL)) k->quit = true;
         if (key == GLFW_KEY_Z && (mods & GLFW_MOD_CONTROL)) ((mods & GLFW_MOD_SHIFT) ? k->redo : k->undo) = true;
+        if (key == GLFW_KEY_P && !(mods & (GLFW_MOD_CONTROL | GLFW_MOD_ALT | GLFW_MOD_SUPER))) k->widen = true;
     });
 
     // Vulkan: instance with the surface extensions, a device that presents.
@@ -320,10 +325,19 @@ int runViewer(const ViewerOptions& options) {
                 if (u.time >= snap->updateTimes.back().time - 5.0) ps.updateMs.push_back(static_cast<float>(u.seconds * 1e3));
             const ObjectInfo* selected =
                 snap->selected && *snap->selected < snap->objects.size() ? &snap->objects[*snap->selected] : nullptr;
+            // Lights are listed and shown with a mark (they cannot be clicked:
+            // the list selects them).
+            const auto label = [](const ObjectInfo& o) {
+                std::string text = o.name;
+                if (o.light) text += kLightMark;
+                return text;
+            };
             if (selected) {
-                ps.selected = selected->name;
+                ps.selected = label(*selected);
                 ps.movable = selected->movable;
-                ps.emitter = std::max({selected->emission.x, selected->emission.y, selected->emission.z}) > 0.0 || emitters.count(selected->name);
+                ps.emitter = selected->light ||
+                             std::max({selected->emission.x, selected->emission.y, selected->emission.z}) > 0.0 ||
+                             emitters.count(selected->name);
                 if (selected->emission != glm::dvec3(0.0)) emitters.insert(selected->name);  // dimmed to 0, still a light
                 // A new selection: its colour and light fill the controls.
                 if (controlsOf != selected->name) {
@@ -339,7 +353,7 @@ int runViewer(const ViewerOptions& options) {
                 controlsOf.clear();
             }
             for (const ObjectInfo& o : snap->objects)
-                if (o.movable) ps.movableObjects.push_back(o.name);
+                if (o.movable) ps.movableObjects.push_back(label(o));
             ps.selectionCount = snap->selection.size();
             ps.selectionNote = snap->selectionNote;
             ps.lastMessage = lastMessage;
@@ -349,6 +363,11 @@ int runViewer(const ViewerOptions& options) {
                 engine.post(e);
                 history.record(Command(std::in_place_type<EditMaterial>, before), Command(std::in_place_type<EditMaterial>, e));
             };
+            if (selected && selected->light && actions.reflectanceEdited) {
+                lastMessage = selected->name;
+                lastMessage += " is a light: it has no reflectance";
+                actions.reflectanceEdited = false;
+            }
             if (selected && actions.reflectanceEdited)
                 edit(EditMaterial{selected->name, std::nullopt,
                                   glm::dvec3(controls.reflectance[0], controls.reflectance[1], controls.reflectance[2])},
@@ -359,15 +378,26 @@ int runViewer(const ViewerOptions& options) {
                                       glm::dvec3(controls.emissionColor[0], controls.emissionColor[1], controls.emissionColor[2]),
                                   std::nullopt},
                      EditMaterial{selected->name, selected->emission, std::nullopt});
-            if (actions.select) engine.post(SelectObject{*actions.select});
+            if (actions.select) {
+                std::string name = *actions.select;  // a light's label back to its name
+                for (const ObjectInfo& o : snap->objects)
+                    if (o.light && label(o) == name) name = o.name;
+                engine.post(SelectObject{name});
+            }
+            // Help the panel does not hold: the key that widens the selection
+            // (appended to the panel's window).
+            if (ImGui::Begin("Radiosity")) ImGui::TextDisabled("P: widen the selection to its parent glTF node (again: further up)");
+            ImGui::End();
             if (actions.targetFpsChanged) engine.post(SetTargetFps{controls.targetFps});
             if (actions.epsilonCommitted) engine.post(SetEpsilon{controls.epsilon});
-            // Keys: L and C toggle the overlays, Ctrl+Q closes the window.
+            // Keys: L and C toggle the overlays, P widens the selection to the
+            // parent node, Ctrl+Q closes the window.
             if (!io.WantCaptureKeyboard) {
                 if (keys.toggleLinks) controls.showLinks = !controls.showLinks;
                 if (keys.toggleChanged) controls.showChanged = !controls.showChanged;
                 actions.overlaysChanged |= keys.toggleLinks || keys.toggleChanged;
                 if (keys.quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
+                if (keys.widen) engine.post(WidenSelection{});
             }
             // Ctrl+Z, Ctrl+Shift+Z: post what takes the last action back (or
             // does it again); the gizmo and the colour controls follow.
@@ -388,6 +418,13 @@ int runViewer(const ViewerOptions& options) {
             CameraView view = camera.view(aspect);
             const Camera cam = camera.camera();
 
+            // Transforms the engine has applied need no memory any more: a
+            // light moved by its lamp (PunctualLight::object) then shows,
+            // and drags from, where the engine put it.
+            if (!gizmo.dragging())
+                std::erase_if(sent, [&](const auto& e) {
+                    return e.first < snap->objects.size() && snap->objects[e.first].worldFromLocal == e.second;
+                });
             // The gizmo on a movable selection.
             ui::GizmoView gv{view.viewProjection(), viewport, cam.position, cam.up};
             if (selected && selected->movable && gpuMesh && !selected->bounds.empty()) {
@@ -457,6 +494,37 @@ int runViewer(const ViewerOptions& options) {
                         gizmoPrintedFor = id;
                     }
                 }
+            }
+
+            // Where the lights are (they have no polygons to see): a marker
+            // each, over the scene and under the panel and the gizmo, where
+            // it was last sent (the engine may lag behind a drag).
+            for (std::uint32_t id = 0; id < snap->objects.size() && gpuMesh; ++id) {
+                const ObjectInfo& o = snap->objects[id];
+                if (!o.light) continue;
+                const auto it = sent.find(id);
+                const glm::dmat4 m = it != sent.end() ? it->second : o.worldFromLocal;
+                const glm::dvec3 at(m[3]);
+                const auto c = ui::Gizmo::handlePosition(gv, at, ui::GizmoPart::None);
+                if (!c) continue;
+                std::optional<glm::dvec2> axis;
+                if (o.spot) {
+                    const double step = 0.05 * std::max(glm::length(at - cam.position), 1e-6);
+                    const glm::dvec3 dir = glm::normalize(glm::dmat3(m) * glm::dvec3(0.0, 0.0, -1.0));
+                    if (const auto tip = ui::Gizmo::handlePosition(gv, at + step * dir, ui::GizmoPart::None))
+                        axis = *tip - *c;
+                }
+                glm::dvec3 colour = lightMarkerColour(o.emission);
+                if (!windowRenderer.srgb())  // ImGui's colours go out as they are: encode them here
+                    for (int k = 0; k < 3; ++k)
+                        colour[k] = colour[k] <= 0.0031308 ? 12.92 * colour[k] : 1.055 * std::pow(colour[k], 1.0 / 2.4) - 0.055;
+                const ImU32 fill = IM_COL32(int(std::lround(255.0 * colour.r)), int(std::lround(255.0 * colour.g)),
+                                            int(std::lround(255.0 * colour.b)), 255);
+                ImDrawList* draw = ImGui::GetBackgroundDrawList();
+                const auto im = [](const glm::dvec2& p) { return ImVec2(float(p.x), float(p.y)); };
+                const std::vector<ScreenSegment> marker = lightMarker(*c, axis);
+                for (const ScreenSegment& s : marker) draw->AddLine(im(s.a), im(s.b), IM_COL32(0, 0, 0, 255), 4.0f);
+                for (const ScreenSegment& s : marker) draw->AddLine(im(s.a), im(s.b), fill, 2.0f);
             }
 
             // Test hook: where each object's box centre shows, to click on it.

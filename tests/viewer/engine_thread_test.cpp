@@ -4,11 +4,17 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "radiosity/Gltf.h"
+#include "support/GltfBuilder.h"
+#include "support/TempDir.h"
 #include "support/TestScenes.h"
 #include "viewer/EngineThread.h"
 #include "viewer/UndoHistory.h"
@@ -128,6 +134,178 @@ TEST(EngineThread, UndoAndRedoAMoveAndAnEdit) {
     const auto redone = waitFor(thread, [&](const ViewerSnapshot& s) { return s.objects[block].worldFromLocal == moved; });
     EXPECT_EQ(redone->objects[block].worldFromLocal, moved);
     EXPECT_EQ(objectNamed(*redone, "back-wall").reflectance, wall) << "only the move is redone";
+}
+
+std::uint32_t indexOf(const ViewerSnapshot& s, const std::string& name) {
+    for (std::uint32_t i = 0; i < s.objects.size(); ++i)
+        if (s.objects[i].name == name) return i;
+    throw std::runtime_error("no object " + name);
+}
+
+std::string number(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+// A horizontal square of side 2a at height y facing up (+Y), as a mesh; the
+// node's members (name, mesh) for GltfBuilder::addNode.
+std::string square(test::GltfBuilder& g, const std::string& name, double a, double y, int material) {
+    const float fa = static_cast<float>(a), fy = static_cast<float>(y);
+    const std::vector<glm::vec3> p = {{-fa, fy, -fa}, {-fa, fy, fa}, {fa, fy, fa}, {fa, fy, -fa}};
+    const int mesh = g.addMesh(name, g.addPositions(p), g.addIndices({0, 1, 2, 0, 2, 3}), material);
+    return "\"name\":\"" + name + "\",\"mesh\":" + std::to_string(mesh);
+}
+
+// A point light "bulb" (KHR_lights_punctual) of intensity 10 at `at`.
+void addBulb(test::GltfBuilder& g, const glm::dvec3& at) {
+    g.extraTopLevel = "\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{\"KHR_lights_punctual\":{"
+                      "\"lights\":[{\"type\":\"point\",\"intensity\":10}]}},";
+    g.addNode("\"name\":\"bulb\",\"translation\":[" + number(at.x) + "," + number(at.y) + "," + number(at.z) +
+              "],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}");
+}
+
+// Punctual lights in the viewer: listed after the objects, selected by name
+// (they have no polygons to click), moved through SetTransform (the gizmo's
+// command) and dimmed through EditMaterial (the panel's light controls), each
+// changing the picture; the undo history takes both back.
+TEST(EngineThread, MovesAndDimsAPunctualLight) {
+    test::TempDir dir;
+    test::GltfBuilder g;
+    g.addNode(square(g, "floor", 1.0, 0.0, g.addGrey("grey", 0.5)));
+    addBulb(g, {0.0, 1.0, 0.0});
+    EngineSettings settings;
+    settings.epsilon = 1e-3;
+    EngineThread thread(loadGltf(g.writeEmbedded(dir).string()), settings, unlimited());
+    const auto solved = waitFor(thread, [](const ViewerSnapshot& s) { return !s.solving && s.mesh; });
+    ASSERT_TRUE(solved->error.empty()) << solved->error;
+    const std::uint32_t bulb = indexOf(*solved, "bulb");
+    const viewer::ObjectInfo& light = solved->objects[bulb];
+    EXPECT_TRUE(light.light);
+    EXPECT_TRUE(light.movable);
+    EXPECT_EQ(light.bounds.center(), glm::dvec3(0.0, 1.0, 0.0));
+    EXPECT_EQ(light.emission, glm::dvec3(10.0));
+    EXPECT_FALSE(light.spot);
+    EXPECT_FALSE(objectNamed(*solved, "floor").light);
+    const double before = meanColor(*solved->mesh);
+    ASSERT_GT(before, 0.0);
+
+    thread.post(viewer::SelectObject{"bulb"});
+    const auto selected = waitFor(thread, [&](const ViewerSnapshot& s) { return s.selected == bulb; });
+    ASSERT_EQ(selected->selected, bulb) << selected->selectionNote;
+    EXPECT_EQ(selected->selection, std::vector<std::uint32_t>{bulb});
+
+    // Lower and to the side: the floor sees it under a larger solid angle.
+    viewer::UndoHistory history;
+    const glm::dmat4 start = light.worldFromLocal;
+    const glm::dmat4 moved = glm::translate(glm::dmat4(1.0), glm::dvec3(0.2, 0.5, -0.1));
+    thread.post(viewer::SetTransform{bulb, moved});
+    history.record(viewer::SetTransform{bulb, start}, viewer::SetTransform{bulb, moved});
+    const auto lowered = waitFor(thread, [&](const ViewerSnapshot& s) { return s.objects[bulb].worldFromLocal == moved; });
+    ASSERT_EQ(lowered->objects[bulb].worldFromLocal, moved) << lowered->selectionNote;
+    EXPECT_EQ(lowered->objects[bulb].bounds.center(), glm::dvec3(0.2, 0.5, -0.1));
+    const double near = meanColor(*lowered->mesh);
+    EXPECT_GT(near, 1.3 * before);
+
+    // Turned about its own position (the gizmo's ring): it stays where it is.
+    const glm::dmat4 turned = moved * glm::rotate(glm::dmat4(1.0), 0.5, glm::dvec3(0.0, 1.0, 0.0));
+    thread.post(viewer::SetTransform{bulb, turned});
+    const auto spun = waitFor(thread, [&](const ViewerSnapshot& s) { return s.objects[bulb].worldFromLocal == turned; });
+    ASSERT_EQ(spun->objects[bulb].worldFromLocal, turned) << spun->selectionNote;
+    EXPECT_LT(glm::length(spun->objects[bulb].bounds.center() - glm::dvec3(0.2, 0.5, -0.1)), 1e-12);
+    EXPECT_NEAR(meanColor(*spun->mesh) / near, 1.0, 1e-3) << "a point light sends the same way everywhere";
+    thread.post(viewer::SetTransform{bulb, moved});
+
+    // Half its intensity: half the picture (it is the only light).
+    thread.post(EditMaterial{"bulb", glm::dvec3(5.0), std::nullopt});
+    history.record(EditMaterial{"bulb", glm::dvec3(10.0), std::nullopt}, EditMaterial{"bulb", glm::dvec3(5.0), std::nullopt});
+    const auto dimmed = waitFor(thread, [&](const ViewerSnapshot& s) { return s.objects[bulb].emission == glm::dvec3(5.0); });
+    ASSERT_EQ(dimmed->objects[bulb].emission, glm::dvec3(5.0)) << dimmed->selectionNote;
+    EXPECT_NEAR(meanColor(*dimmed->mesh) / near, 0.5, 0.01);
+
+    // A light has no reflectance: refused with a note, nothing changes.
+    thread.post(EditMaterial{"bulb", std::nullopt, glm::dvec3(0.5)});
+    const auto refused = waitFor(thread, [](const ViewerSnapshot& s) { return !s.selectionNote.empty(); });
+    EXPECT_NE(refused->selectionNote.find("reflectance"), std::string::npos) << refused->selectionNote;
+
+    // Ctrl+Z twice: the dimming, then the move.
+    for (int i = 0; i < 2; ++i) thread.post(*history.undo());
+    const auto undone = waitFor(thread, [&](const ViewerSnapshot& s) {
+        return s.objects[bulb].worldFromLocal == start && s.objects[bulb].emission == glm::dvec3(10.0) &&
+               s.frame.pending + s.frame.stale == 0;
+    });
+    ASSERT_EQ(undone->objects[bulb].worldFromLocal, start);
+    EXPECT_EQ(undone->objects[bulb].emission, glm::dvec3(10.0));
+    EXPECT_NEAR(meanColor(*undone->mesh) / before, 1.0, 0.01);
+}
+
+// The P key's command: the selection widened to the glTF node its objects
+// share, then to the parent's subtree; the gizmo stays on its object, and
+// the widened selection moves together.
+TEST(EngineThread, WidenSelectionTakesTheParentNodesSubtree) {
+    test::TempDir dir;
+    test::GltfBuilder g;
+    const int grey = g.addGrey("grey", 0.5);
+    g.addNode(square(g, "floor", 2.0, 0.0, grey));                         // node 0
+    const int base = g.addNode(square(g, "base", 0.2, 0.1, grey), false);  // node 1
+    const int shade = g.addNode(square(g, "shade", 0.1, 0.4, grey), false);
+    const int lamp = g.addNode("\"name\":\"lamp\",\"children\":[" + std::to_string(base) + "," +
+                               std::to_string(shade) + "]", false);
+    const int table = g.addNode(square(g, "table", 0.3, 0.3, grey), false);
+    g.addNode("\"name\":\"corner\",\"translation\":[0.5,0,0.5],\"children\":[" + std::to_string(lamp) + "," +
+              std::to_string(table) + "]");
+    addBulb(g, {0.0, 1.5, 0.0});
+    EngineSettings settings;
+    settings.epsilon = 1e-3;
+    EngineThread thread(loadGltf(g.writeEmbedded(dir).string()), settings, unlimited());
+    const auto solved = waitFor(thread, [](const ViewerSnapshot& s) { return !s.solving && s.mesh; });
+    ASSERT_TRUE(solved->error.empty()) << solved->error;
+    const std::uint32_t iFloor = indexOf(*solved, "floor"), iBase = indexOf(*solved, "base"),
+                        iShade = indexOf(*solved, "shade"), iTable = indexOf(*solved, "table"),
+                        iBulb = indexOf(*solved, "bulb");
+    const auto sorted = [](std::vector<std::uint32_t> v) {
+        std::sort(v.begin(), v.end());
+        return v;
+    };
+    using Ids = std::vector<std::uint32_t>;
+
+    thread.post(viewer::SelectObject{"base"});
+    waitFor(thread, [&](const ViewerSnapshot& s) { return s.selected == iBase; });
+    thread.post(viewer::WidenSelection{});
+    const auto lampWide = waitFor(thread, [&](const ViewerSnapshot& s) { return s.selection.size() == 2; });
+    EXPECT_EQ(sorted(lampWide->selection), sorted(Ids{iBase, iShade})) << lampWide->selectionNote;
+    EXPECT_EQ(lampWide->selected, iBase) << "the gizmo stays on its object";
+    EXPECT_NE(lampWide->selectionNote.find("node " + std::to_string(lamp)), std::string::npos) << lampWide->selectionNote;
+
+    thread.post(viewer::WidenSelection{});
+    const auto cornerWide = waitFor(thread, [&](const ViewerSnapshot& s) { return s.selection.size() == 3; });
+    EXPECT_EQ(sorted(cornerWide->selection), sorted(Ids{iBase, iShade, iTable})) << cornerWide->selectionNote;
+
+    thread.post(viewer::WidenSelection{});
+    const auto all = waitFor(thread, [&](const ViewerSnapshot& s) { return s.selection.size() == 4; });
+    EXPECT_EQ(sorted(all->selection), sorted(Ids{iFloor, iBase, iShade, iTable})) << "every object, no light";
+    EXPECT_EQ(std::count(all->selection.begin(), all->selection.end(), iBulb), 0);
+
+    thread.post(viewer::WidenSelection{});
+    const auto nothing = waitFor(thread, [](const ViewerSnapshot& s) {
+        return s.selectionNote.find("nothing to widen") != std::string::npos;
+    });
+    EXPECT_EQ(nothing->selection.size(), 4u);
+
+    // The lamp's two parts moved as the gizmo moves a selection: one frame.
+    thread.post(viewer::SelectObject{"shade"});
+    waitFor(thread, [&](const ViewerSnapshot& s) { return s.selection.size() == 1; });
+    thread.post(viewer::WidenSelection{});
+    const auto lamp2 = waitFor(thread, [&](const ViewerSnapshot& s) { return s.selection.size() == 2; });
+    ASSERT_EQ(sorted(lamp2->selection), sorted(Ids{iBase, iShade}));
+    const glm::dmat4 shift = glm::translate(glm::dmat4(1.0), glm::dvec3(-0.3, 0.0, 0.2));
+    viewer::SetTransforms moves;
+    for (std::uint32_t o : lamp2->selection) moves.moves.push_back({o, shift * lamp2->objects[o].worldFromLocal});
+    const std::uint64_t movesBefore = lamp2->moves;
+    thread.post(moves);
+    const auto moved = waitFor(thread, [&](const ViewerSnapshot& s) { return s.moves > movesBefore; });
+    for (const viewer::SetTransform& m : moves.moves) EXPECT_EQ(moved->objects[m.object].worldFromLocal, m.worldFromLocal);
+    EXPECT_EQ(moved->moves, movesBefore + 1) << "one frame for the group";
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "support/Cli.h"
+#include "support/GltfBuilder.h"
 #include "support/TempDir.h"
 
 namespace rad::test {
@@ -314,6 +315,90 @@ TEST(ViewerTest, ShiftClickingTwoObjectsMovesThemTogether) {
     EXPECT_GT(meanAbsDifference(before, after, 530, 330, 600, 460), 10.0);
     EXPECT_GT(meanAbsDifference(before, after, 815, 690, 900, 735), 2.0);
     EXPECT_LT(meanAbsDifference(before, after, 700, 150, 800, 250), 4.0);
+}
+
+// A floor; a "lamp" node holding two meshes (base and shade); a table
+// beside it; and a magenta point light "bulb" over the floor. The surfaces
+// reflect no blue: lit, they never look like the light's marker.
+std::string writeLampScene(const TempDir& dir) {
+    GltfBuilder g;
+    const int grey = g.addMaterial("{\"name\":\"olive\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.5,0,1]}}");
+    const auto square = [&](const std::string& name, float a, float y, bool root, const std::string& more = "") {
+        const std::vector<glm::vec3> p = {{-a, y, -a}, {-a, y, a}, {a, y, a}, {a, y, -a}};
+        const int mesh = g.addMesh(name, g.addPositions(p), g.addIndices({0, 1, 2, 0, 2, 3}), grey);
+        return g.addNode("\"name\":\"" + name + "\",\"mesh\":" + std::to_string(mesh) + more, root);
+    };
+    square("floor", 1.0f, 0.0f, true);
+    const int base = square("base", 0.15f, 0.05f, false);
+    const int shade = square("shade", 0.1f, 0.3f, false);
+    g.addNode("\"name\":\"lamp\",\"translation\":[-0.3,0,0.2],\"children\":[" + std::to_string(base) + "," +
+              std::to_string(shade) + "]");
+    square("table", 0.25f, 0.25f, true, ",\"translation\":[0.5,0,0.3]");
+    g.extraTopLevel = "\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{\"KHR_lights_punctual\":{"
+                      "\"lights\":[{\"type\":\"point\",\"color\":[1,0.2,1],\"intensity\":5}]}},";
+    g.addNode("\"name\":\"bulb\",\"translation\":[0.3,0.5,-0.3],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}");
+    return g.writeEmbedded(dir, "lamp.gltf").string();
+}
+
+// tests/viewer/select_key_drag.sh under Xvfb: `select` preselected, `key`
+// pressed, the gizmo's x-arrow dragged.
+ProcessResult runSelectKeyDrag(const TempDir& dir, const std::string& scene, const std::string& select,
+                               const std::string& key = "") {
+    const std::string script = std::string(RADIOSITY_SOURCE_DIR) + "/tests/viewer/select_key_drag.sh";
+    std::string command = "timeout 90 " + kXvfb + shellQuote(script) + " " + shellQuote(kViewer) + " " +
+                          shellQuote(scene) + " " + shellQuote(dir.path().string());
+    command.append(" ").append(shellQuote(select));  // append: GCC 12's false -Wrestrict
+    if (!key.empty()) command.append(" ").append(shellQuote(key));
+    return run(command);
+}
+
+// P widens the selection from the lamp's base to the lamp node's subtree:
+// the gizmo's drag moves base and shade, not the table beside them.
+TEST(ViewerTest, PWidensTheSelectionToTheParentNode) {
+    ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    ASSERT_TRUE(haveDragTools()) << "xdotool and xwd (x11-apps) are needed";
+    TempDir dir;
+    const ProcessResult r = runSelectKeyDrag(dir, writeLampScene(dir), "base", "p");
+    const std::string log = readFile((dir / "viewer.log").string());
+    ASSERT_NE(r.output.find("viewer-exit 0"), std::string::npos) << r.output << log;
+    EXPECT_NE(log.find("engine: transform base"), std::string::npos) << log;
+    EXPECT_NE(log.find("engine: transform shade"), std::string::npos) << "P did not widen to the lamp\n" << log;
+    EXPECT_EQ(log.find("engine: transform table"), std::string::npos) << log;
+}
+
+// A light, selected by name (it has no polygons to click): drawn as a
+// magenta star, its gizmo at its position drags it, and the star follows.
+TEST(ViewerTest, ALightIsMarkedAndItsGizmoDragsIt) {
+    ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    ASSERT_TRUE(haveDragTools()) << "xdotool and xwd (x11-apps) are needed";
+    TempDir dir;
+    const ProcessResult r = runSelectKeyDrag(dir, writeLampScene(dir), "bulb");
+    const std::string log = readFile((dir / "viewer.log").string());
+    ASSERT_NE(r.output.find("viewer-exit 0"), std::string::npos) << r.output << log;
+    EXPECT_NE(log.find("engine: transform bulb"), std::string::npos) << log;
+    // The marker: linear (1, 0.2, 1), sRGB-encoded on screen; its mean x.
+    const auto marker = [](const Picture& p) {
+        double sum = 0.0;
+        int n = 0;
+        for (int y = 0; y < p.height; ++y)
+            for (int x = 400; x < p.width; ++x) {
+                const unsigned char* c = p.at(x, y);
+                if (c[0] > 200 && c[2] > 200 && c[1] > 60 && c[1] < 180) {
+                    sum += x;
+                    ++n;
+                }
+            }
+        return std::pair{n, n > 0 ? sum / n : 0.0};
+    };
+    const Picture before = readPicture((dir / "before.png").string());
+    const Picture after = readPicture((dir / "after.png").string());
+    ASSERT_GE(before.width, 1000);
+    ASSERT_EQ(after.width, before.width);
+    const auto [nBefore, xBefore] = marker(before);
+    const auto [nAfter, xAfter] = marker(after);
+    EXPECT_GT(nBefore, 20) << "no light marker";
+    EXPECT_GT(nAfter, 20) << "no light marker after the drag";
+    EXPECT_LT(xAfter, xBefore - 30.0) << "the marker did not follow the drag to the left";
 }
 
 TEST(ViewerTest, EngineThreadHeadlessStress) {
