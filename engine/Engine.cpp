@@ -218,8 +218,8 @@ namespace {
 //   final links (4 to 8 on the scenes in scenes/).
 // Until the decays have been measured (C's needs two rounds, r two falling
 // sweeps) a guess stands in: the fraction moves with it, but secondsLeft
-// stays absent. The refinement itself reports nothing while it runs: the
-// fraction moves at its end.
+// stays absent. The refinement reports after each of its waves that it
+// runs, without moving the fraction: that moves at its end.
 class SolveClock {
   public:
     SolveClock(const Engine::Progress& progress, int maxRounds, double roundTolerance,
@@ -233,6 +233,16 @@ class SolveClock {
     explicit operator bool() const { return bool(progress_); }
 
     void refining(int round) { report("round " + std::to_string(round) + ": refining"); }
+    // During a round's refinement, after each wave, once nothing has been
+    // reported for kQuiet: the fraction stands (the refinement's own length
+    // is not projected), the line says it runs. Only long refinements say so:
+    // a line per wave would take the places of the lines with an estimate
+    // (the programs print at most one a second).
+    void refiningWave(int round, std::size_t refined, std::size_t links) {
+        if (std::chrono::duration<double>(now() - lastReport_).count() < kQuiet) return;
+        report("round " + std::to_string(round) + ": refining, " + std::to_string(refined) + " links refined, " +
+               std::to_string(links) + " links in all");
+    }
     // After the refinement of `round`: links refined, links live before and
     // after, its time, and whether the loop ends after this round's solve.
     void refined(int round, std::size_t refined, std::size_t linksBefore, std::size_t links, double seconds,
@@ -308,6 +318,7 @@ class SolveClock {
         bool measured = true;  // false: a guess stood in for a decay
     };
     static constexpr double kInterval = 0.1;            // seconds between sweep reports
+    static constexpr double kQuiet = 3.0;               // seconds of silence before a refinement wave reports
     static constexpr double kBeforeEnd = 0.99;          // the fraction short of the end
     // Before two rounds measured them: the share refined per change of the
     // round before, and the decay of that change (typical of scenes/).
@@ -452,7 +463,10 @@ const SolveStats& Engine::solve(const Progress& progress) {
         auto t = std::chrono::steady_clock::now();
         const std::size_t linksBefore = s.links.liveCount();
         s.setOracles();
-        const std::size_t refined = s.refiner.refineAll();
+        Refiner::WaveReport onWave;
+        if (clock)
+            onWave = [&clock, &s, round](std::size_t n) { clock.refiningWave(round, n, s.links.liveCount()); };
+        const std::size_t refined = s.refiner.refineAll(onWave);
         st.refineSeconds += secondsSince(t);
         st.refineRounds = round;
         // A round that refines almost nothing changes the radiosity too little

@@ -55,15 +55,17 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
                           References* references, const std::function<void(int, const Engine&, const FrameRecord*)>& onFrame) {
     AnimationRun run;
     Engine engine(scene, settings);
-    std::vector<std::uint32_t> objects;
-    for (const ObjectMove& m : moves) {
-        const auto found = engine.scene().findObject(m.object);
-        if (!found) throw std::runtime_error(scene.sourcePath + ": no object named '" + m.object + "'");
-        objects.push_back(*found);
-    }
-    // Where each edit starts: the object's values in the file.
+    for (const ObjectMove& m : moves)
+        if (!engine.scene().findObject(m.object) && !engine.scene().findLight(m.object))
+            throw std::runtime_error(scene.sourcePath + ": no object or light named '" + m.object + "'");
+    // Where each edit starts: the object's values in the file (a light's
+    // emission is its intensity).
     std::vector<Material> startOf;
     for (const Edit& e : edits) {
+        if (const auto light = engine.scene().findLight(e.object)) {
+            startOf.push_back(Material{e.object, glm::dvec3(0.0), engine.scene().lights[*light].intensity});
+            continue;
+        }
         const auto o = engine.scene().findObject(e.object);
         if (!o || engine.scene().objects[*o].polygonCount == 0)
             throw std::runtime_error(scene.sourcePath + ": no object named '" + e.object + "' with polygons");

@@ -473,14 +473,14 @@ std::size_t Refiner::memoryInUse() const {
     return links_.liveCount() * (sizeof(Link) + 3 * sizeof(LinkId)) + h_.liveCount() * sizeof(HElement);
 }
 
-std::size_t Refiner::refineAll() {
+std::size_t Refiner::refineAll(const WaveReport& onWave) {
     std::vector<LinkId> wave;
     for (ElementId e = 0; e < h_.size(); ++e)
         for (LinkId l : h_[e].links) wave.push_back(l);
-    return refineAll(std::move(wave));
+    return refineAll(std::move(wave), onWave);
 }
 
-std::size_t Refiner::refineAll(std::vector<LinkId> wave) {
+std::size_t Refiner::refineAll(std::vector<LinkId> wave, const WaveReport& onWave) {
     std::size_t refined = 0;
     while (!wave.empty()) {
         // Judged on all cores, kept in the wave's order.
@@ -499,6 +499,7 @@ std::size_t Refiner::refineAll(std::vector<LinkId> wave) {
         wave.clear();
         refine(batch, wave, true);
         refined += batch.size();
+        if (onWave) onWave(refined);
     }
     // Links left unrefined (the cap) that deferred their rays cast them now.
     castPendingRays(wave);

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <array>
 #include <optional>
+#include <functional>
 #include <vector>
 
 #include "geometry/RayCaster.h"
@@ -77,10 +78,12 @@ public:
     void linkRoot();
 
     // Refines every active link until the criterion holds everywhere (or the
-    // memory cap is met). Returns the number of links refined.
-    std::size_t refineAll();
+    // memory cap is met). Returns the number of links refined. `onWave`, if
+    // given, hears the count refined so far after each wave (for progress).
+    using WaveReport = std::function<void(std::size_t refined)>;
+    std::size_t refineAll(const WaveReport& onWave = {});
     // The same for the given active links and the links their refinement makes.
-    std::size_t refineAll(std::vector<LinkId> links);
+    std::size_t refineAll(std::vector<LinkId> links, const WaveReport& onWave = {});
 
     bool wouldRefine(const Link& link) const;
     // The power the link could carry at full visibility, from the oracle of

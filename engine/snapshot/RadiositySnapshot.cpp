@@ -234,16 +234,17 @@ bool patchInPlace(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<st
         for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
             mesh.indices[cache.indexAt[p] + i] = part.mesh.indices[i] + offset;
     });
-    // Their outline vertices leave the sorted keys and come back under their new keys.
-    const auto inChanged = [&](std::uint32_t v) {
-        const std::size_t p = partOf(v);
-        return std::binary_search(changed.begin(), changed.end(), p);
-    };
+    // Their outline vertices leave the sorted keys and come back under their
+    // new keys (a mark per mesh vertex: the keys are many, the parts few).
+    std::vector<std::uint8_t> moved(cache.vertices, 0);
+    for (std::size_t p : changed)
+        std::fill(moved.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p]),
+                  moved.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p + 1]), std::uint8_t(1));
     std::vector<Key> touched;
     std::vector<std::pair<Key, std::uint32_t>> kept, fresh;
     kept.reserve(cache.keyed.size());
     for (const auto& entry : cache.keyed) {
-        if (inChanged(entry.second))
+        if (moved[entry.second])
             touched.push_back(entry.first);
         else
             kept.push_back(entry);
