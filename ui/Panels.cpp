@@ -106,12 +106,17 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
     if (!s.selectionNote.empty()) ImGui::TextWrapped("%s", s.selectionNote.c_str());
     if (!s.selected.empty() && s.movable) {
         // Applied when released: each edit updates the whole solution.
-        ImGui::ColorEdit3("reflectance", c.reflectance, ImGuiColorEditFlags_Float);
-        a.reflectanceEdited = ImGui::IsItemDeactivatedAfterEdit();
+        if (!s.light) {
+            ImGui::ColorEdit3("reflectance", c.reflectance, ImGuiColorEditFlags_Float);
+            a.reflectanceEdited = ImGui::IsItemDeactivatedAfterEdit();
+        }
         if (s.emitter) {
             ImGui::ColorEdit3("light colour", c.emissionColor, ImGuiColorEditFlags_Float);
             a.emissionEdited = ImGui::IsItemDeactivatedAfterEdit();
-            ImGui::SliderFloat("intensity", &c.emissionIntensity, 0.0f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+            // A punctual light's intensity (W/sr) can be far above a panel's
+            // emission: the slider reaches 4 times what the light has.
+            const float top = std::max(100.0f, 4.0f * c.emissionIntensity);
+            ImGui::SliderFloat("intensity", &c.emissionIntensity, 0.0f, top, "%.2f", ImGuiSliderFlags_Logarithmic);
             a.emissionEdited |= ImGui::IsItemDeactivatedAfterEdit();
         }
     }
@@ -124,6 +129,7 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
     }
     ImGui::TextDisabled("left drag: orbit   right drag: pan");
     ImGui::TextDisabled("wheel: zoom   Ctrl+Z / Ctrl+Shift+Z: undo / redo   Ctrl+Q: quit");
+    ImGui::TextDisabled("P: widen the selection to its parent glTF node (again: further up)");
 
     ImGui::Separator();
     a.saveScreenshot = ImGui::Button("Save screenshot");

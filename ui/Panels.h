@@ -41,6 +41,7 @@ struct PanelState {
     std::string selectionNote;
     // The selected object emits (its controls show colour and intensity).
     bool emitter = false;
+    bool light = false;  // a punctual light: no surface, no reflectance
     // Every object that can move (has polygons), for the list.
     std::vector<std::string> movableObjects;
 

@@ -249,7 +249,7 @@ void EngineThread::run() {
         std::vector<std::optional<NodePath>> paths;
         for (const Object& o : scene.objects)
             paths.push_back(o.polygonCount > 0 ? std::optional(o.nodePath) : std::nullopt);
-        paths.resize(scene.objects.size() + scene.lights.size());  // lights: no path
+        for (const PunctualLight& l : scene.lights) paths.push_back(l.nodePath);
         const std::optional<Widening> wider = widenSelection(paths, w.selection);
         if (!wider) {
             const bool anObject = std::any_of(w.selection.begin(), w.selection.end(),

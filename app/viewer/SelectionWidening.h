@@ -3,9 +3,9 @@
 // subtree (a lamp made of several meshes under one node, a table and what
 // stands on it) moves as one. Pure: it sees only the objects' node paths.
 //
-//   paths[i]: object i's Object::nodePath (the glTF nodes from a scene root
-//   down to its node), or nullopt for an item that cannot join (a punctual
-//   light, an object without polygons).
+//   paths[i]: item i's Object::nodePath or PunctualLight::nodePath (the glTF
+//   nodes from a scene root down to its node), or nullopt for an item that
+//   cannot join (an object without polygons).
 //   widenSelection(paths, {3})       -> every object under object 3's node...
 //   widenSelection(paths, that)      -> ...then under its parent, and so on.
 //
@@ -13,8 +13,8 @@
 // while every object under that prefix is selected already, go one node up
 // (so each press selects more, or says there is nothing more); then select
 // every object whose path starts with the prefix. The empty prefix stands
-// for the whole scene. Selected items without a path (lights) stay selected
-// and take no part in the prefix.
+// for the whole scene. Selected items without a path stay selected and take
+// no part in the prefix.
 
 #include <algorithm>
 #include <cstdint>

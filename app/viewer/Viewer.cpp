@@ -335,6 +335,7 @@ int runViewer(const ViewerOptions& options) {
             if (selected) {
                 ps.selected = label(*selected);
                 ps.movable = selected->movable;
+                ps.light = selected->light;
                 ps.emitter = selected->light ||
                              std::max({selected->emission.x, selected->emission.y, selected->emission.z}) > 0.0 ||
                              emitters.count(selected->name);
@@ -384,10 +385,6 @@ int runViewer(const ViewerOptions& options) {
                     if (o.light && label(o) == name) name = o.name;
                 engine.post(SelectObject{name});
             }
-            // Help the panel does not hold: the key that widens the selection
-            // (appended to the panel's window).
-            if (ImGui::Begin("Radiosity")) ImGui::TextDisabled("P: widen the selection to its parent glTF node (again: further up)");
-            ImGui::End();
             if (actions.targetFpsChanged) engine.post(SetTargetFps{controls.targetFps});
             if (actions.epsilonCommitted) engine.post(SetEpsilon{controls.epsilon});
             // Keys: L and C toggle the overlays, P widens the selection to the

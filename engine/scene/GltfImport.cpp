@@ -502,6 +502,7 @@ class Importer {
         light.intensity = color * l.intensity;
         light.worldFromLocal = world;
         light.object = object;
+        light.nodePath = nodePath_;
         light.position = glm::dvec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
         const glm::dvec3 axis = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
         if (!(glm::length(axis) > 0.0)) fail(item, "transform collapses the light's direction");

@@ -80,6 +80,9 @@ struct PunctualLight {
     double innerCone = 0.0;                // spot, radians, 0 <= inner < outer <= pi/2
     double outerCone = 0.7853981633974483;
     glm::dmat4 worldFromLocal{1.0};  // the node's world transform (moves replace it)
+    // The glTF nodes from a scene root down to the light's node, as
+    // Object::nodePath: widening a selection to a node takes its lights too.
+    std::vector<std::uint32_t> nodePath;
     // The object whose subtree holds the light's node (a lamp marked
     // extras.object, its bulb a child node): the light moves with it. Empty
     // for a light of its own.
