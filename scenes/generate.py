@@ -307,6 +307,7 @@ class SceneBuilder:
         self.camera = None
         self.rooms = []  # (object name, interior reference point) for --check
         self.outward = []  # (object name, part centre) for closed parts checked outward
+        self.lights = []  # KHR_lights_punctual: dicts (name, type, color, intensity, position, [aim, cones])
 
     def material(self, name, rgb, emission=None):
         """emission: (r, g, b) radiometric emission E; split into factor * strength."""
@@ -319,6 +320,15 @@ class SceneBuilder:
         o = Obj(name, dynamic, extras)
         self.objects.append(o)
         return o
+
+    def point_light(self, name, position, color, intensity):
+        self.lights.append({'name': name, 'type': 'point', 'color': color, 'intensity': intensity,
+                            'position': position})
+
+    def spot_light(self, name, position, aim, color, intensity, inner, outer):
+        """A spot at `position` pointing at the point `aim`; cone angles in radians."""
+        self.lights.append({'name': name, 'type': 'spot', 'color': color, 'intensity': intensity,
+                            'position': position, 'aim': aim, 'inner': inner, 'outer': outer})
 
     def set_camera(self, eye, target, yfov, aspect, up=(0.0, 1.0, 0.0)):
         self.camera = (eye, target, up, yfov, aspect)
@@ -464,6 +474,22 @@ def build_gltf(sb):
                      'perspective': {'yfov': yfov, 'aspectRatio': aspect, 'znear': 0.01, 'zfar': 100.0}})
         nodes.append({'name': 'camera', 'camera': 0, 'translation': list(eye),
                       'rotation': look_at_quaternion(eye, target, up)})
+    if sb.lights:
+        # KHR_lights_punctual: a light per node, a spot's node turned so that its -Z points at its aim
+        defs = []
+        for i, l in enumerate(sb.lights):
+            d = {'name': l['name'], 'type': l['type'], 'color': list(l['color']), 'intensity': l['intensity']}
+            node = {'name': l['name'], 'translation': list(l['position']),
+                    'extensions': {'KHR_lights_punctual': {'light': i}}}
+            if l['type'] == 'spot':
+                d['spot'] = {'innerConeAngle': l['inner'], 'outerConeAngle': l['outer']}
+                aim = normalize(sub(l['aim'], l['position']))
+                up = (0.0, 0.0, -1.0) if abs(aim[1]) > 0.9 else (0.0, 1.0, 0.0)
+                node['rotation'] = look_at_quaternion(l['position'], l['aim'], up)
+            defs.append(d)
+            nodes.append(node)
+        gl.setdefault('extensionsUsed', []).append('KHR_lights_punctual')
+        gl['extensions'] = {'KHR_lights_punctual': {'lights': defs}}
     gl['scene'] = 0
     gl['scenes'] = [{'name': sb.name, 'nodes': list(range(len(nodes)))}]
     gl['nodes'] = nodes
@@ -942,6 +968,23 @@ def furnished_room():
 FURNISHED_ROOM_TILE = 0.75
 
 
+def lamp_room():
+    """The furnished room lit by punctual lights only (KHR_lights_punctual, as modelling tools
+    export lamps): a point light under the ceiling and a spot over the desk, no emissive panel."""
+    sb = SceneBuilder('lamp-room')
+    mats = office_materials(sb)
+    rng = Rng(612)
+    room(sb, '', (0.0, 0.0, 0.0), (6.0, 3.0, 5.0), FURNISHED_ROOM_TILE, (mats['wall'], mats['floor'], mats['ceiling']))
+    add_desk(sb, 'desk', 1.6, 0.46, 0.0, mats)
+    add_chair(sb, 'chair', 1.7, 1.4, math.pi + 0.25, mats, dynamic=True)
+    add_cabinet(sb, 'filing-cabinet', 3.3, 0.32, 0.0, mats)
+    add_bookcase(sb, 'bookcase', 0.19, 2.6, 0.5 * math.pi, mats, rng)
+    sb.point_light('bulb', (3.4, 2.5, 2.6), (1.0, 0.93, 0.82), 1.2)
+    sb.spot_light('desk-spot', (1.6, 2.9, 0.9), (1.6, 0.74, 0.5), (1.0, 0.97, 0.9), 4.0, 0.35, 0.6)
+    sb.set_camera((5.6, 1.6, 4.6), (1.9, 1.15, 1.0), math.radians(50.0), 4.0 / 3.0)
+    return sb
+
+
 def building_floor(rooms_per_side=30):
     """A floor of a building at the scale users bring (about 100k polygons): a corridor with
     furnished rooms on both sides. Each room is closed but for its doorway onto the corridor (its
@@ -1216,7 +1259,7 @@ def check_scene(sb, path, expected_bytes):
 # ---------------------------------------------------------------------------
 
 SCENES = [('cornell-box', cornell), ('office', office), ('two-offices', two_offices), ('dark-room', dark_room),
-          ('furnished-room', furnished_room), ('building-floor', building_floor)]
+          ('furnished-room', furnished_room), ('lamp-room', lamp_room), ('building-floor', building_floor)]
 
 
 def main(argv=None):
@@ -1241,7 +1284,8 @@ def main(argv=None):
         dyn = [o.name for o in sb.objects if o.dynamic]
         print('%-20s %6d polygons  %8d bytes  lights %d  dynamic %s' % (
             name + '.gltf', sb.polygon_count(), len(data),
-            sum(1 for o in sb.objects if any(sb.materials[m][1] for m, _ in o.parts)), ','.join(dyn)))
+            sum(1 for o in sb.objects if any(sb.materials[m][1] for m, _ in o.parts)) + len(sb.lights),
+            ','.join(dyn)))
         if args.check:
             errors, total, _ = check_scene(sb, path, data)
             for e in errors:
