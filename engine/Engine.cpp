@@ -525,7 +525,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     }
     s.hierarchy.compact();
     s.links.compact();
-    st.memory = {s.hierarchy.memoryBytes(), s.links.memoryBytes()};
+    st.memory = {s.hierarchy.memoryBytes(), s.links.memoryBytes() + s.lightLinks.memoryBytes()};
     st.energy = energy();
     // The full sweeps left every receiver's irradiance consistent with the
     // sources' gathered B: the in-place updates start from here.
@@ -822,7 +822,9 @@ EnergyBalance Engine::energy() const {
     auditEnergy(s.scene, s.hierarchy, s.rays, e);
     return e;
 }
-MemoryStats Engine::memory() const { return {state_->hierarchy.memoryBytes(), state_->links.memoryBytes()}; }
+MemoryStats Engine::memory() const {
+    return {state_->hierarchy.memoryBytes(), state_->links.memoryBytes() + state_->lightLinks.memoryBytes()};
+}
 std::size_t Engine::linkCount() const { return state_->links.liveCount(); }
 
 RadiositySamples Engine::samples() const { return sampleRadiosity(state_->scene, state_->hierarchy); }

@@ -20,9 +20,9 @@ def luminance(c):
     return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 
 
-def solve(cli, scene, report):
+def solve(cli, scene, report, extra=()):
     start = time.monotonic()
-    r = subprocess.run(['/usr/bin/time', '-f', '%M', cli, 'solve', scene, '--report', report, '--force'],
+    r = subprocess.run(['/usr/bin/time', '-f', '%M', cli, 'solve', scene, '--report', report, '--force', *extra],
                        capture_output=True, text=True)
     seconds = time.monotonic() - start
     if r.returncode != 0:
@@ -36,13 +36,14 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('--cli', default=os.path.join(ROOT, 'build', 'app', 'radiosity-cli'))
     ap.add_argument('--rooms', nargs='*', default=['s00', 's15', 'n07', 'n29'])
+    ap.add_argument('--floor-args', default='', help='more solve options for the whole floor, e.g. "--min-area 0.003"')
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         alone = os.path.join(tmp, 'one-room-per-side.gltf')
         with open(alone, 'wb') as f:
             f.write(generate.build_gltf(generate.building_floor(1)))
         floor, seconds, peak = solve(args.cli, os.path.join(ROOT, 'scenes', 'building-floor.gltf'),
-                                     os.path.join(tmp, 'floor.json'))
+                                     os.path.join(tmp, 'floor.json'), args.floor_args.split())
         e = floor['energy']
         print('building-floor: %d polygons, %d links, %d p-links, solve %.1f s (wall %.1f s), peak memory %.2f GB, '
               'engine memory %.2f GB, converged %s' % (

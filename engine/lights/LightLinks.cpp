@@ -10,9 +10,13 @@
 
 namespace rad {
 
-void LightLinks::sizeTables() {
-    links_.resize(scene_.lights.size());
-    for (auto& perPolygon : links_) perPolygon.resize(scene_.polygons.size());
+void LightLinks::sizeTables() { links_.resize(scene_.lights.size()); }
+
+const std::vector<LightLinks::LightLink>& LightLinks::linksOf(std::size_t light, std::uint32_t polygon) const {
+    static const std::vector<LightLink> none;
+    if (light >= links_.size()) return none;
+    const auto it = links_[light].find(polygon);
+    return it == links_[light].end() ? none : it->second;
 }
 
 bool LightLinks::facesLight(const PunctualLight& light, std::uint32_t polygon) const {
@@ -71,9 +75,15 @@ void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>
     };
     std::vector<Item> frontier;
     for (std::uint32_t p : polygons) {
-        links_[lightIndex][p].clear();
-        if (intensity > 0.0 && h_.polygonElement(p) != kNone && facesLight(light, p))
-            frontier.push_back({p, h_.polygonElement(p)});
+        links_[lightIndex].erase(p);
+        if (!(intensity > 0.0) || h_.polygonElement(p) == kNone || !facesLight(light, p)) continue;
+        const Polygon& poly = scene_.polygons[p];
+        Aabb box;
+        for (int k = 0; k < poly.vertexCount; ++k) box.extend(poly.vertices[k]);
+        const glm::dvec3 nearest = glm::clamp(light.position, box.lo, box.hi);
+        const double d2 = glm::dot(nearest - light.position, nearest - light.position);
+        if (d2 > 0.0 && intensity * poly.area() / d2 < kNegligible * threshold_) continue;
+        frontier.push_back({p, h_.polygonElement(p)});
     }
     std::vector<Estimate> estimates;
     while (!frontier.empty()) {
@@ -108,7 +118,7 @@ void LightLinks::sumDirect(std::uint32_t polygon) {
         for (ElementId c : h_[e].children) stack.push_back(c);
     }
     for (std::size_t l = 0; l < links_.size(); ++l)
-        for (const LightLink& link : links_[l][polygon]) {
+        for (const LightLink& link : linksOf(l, polygon)) {
             h_[link.receiver].direct += scene_.lights[l].intensity * double(link.irradiance);
             h_[link.receiver].lit = true;
         }
@@ -130,12 +140,12 @@ std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& poly
     // What each polygon held before, to tell which changed.
     std::vector<std::vector<std::vector<LightLink>>> before(links_.size());
     for (std::size_t l = 0; l < links_.size(); ++l)
-        for (std::uint32_t p : polygons) before[l].push_back(links_[l][p]);
+        for (std::uint32_t p : polygons) before[l].push_back(linksOf(l, p));
     for (std::uint32_t l = 0; l < scene_.lights.size(); ++l)
         if (!light || *light == l) link(l, polygons);
     for (std::size_t i = 0; i < polygons.size(); ++i) {
         bool same = true;
-        for (std::size_t l = 0; l < links_.size(); ++l) same = same && before[l][i] == links_[l][polygons[i]];
+        for (std::size_t l = 0; l < links_.size(); ++l) same = same && before[l][i] == linksOf(l, polygons[i]);
         if (same) continue;
         sumDirect(polygons[i]);
         changed.push_back(h_.polygonElement(polygons[i]));
@@ -151,9 +161,12 @@ std::vector<ElementId> LightLinks::relinkLight(std::uint32_t light) {
 
 std::vector<ElementId> LightLinks::refreshIntensity(std::uint32_t light) {
     sizeTables();
+    std::vector<std::uint32_t> lit;
+    for (const auto& [p, links] : links_[light])
+        if (!links.empty()) lit.push_back(p);
+    std::sort(lit.begin(), lit.end());
     std::vector<ElementId> changed;
-    for (std::uint32_t p = 0; p < scene_.polygons.size(); ++p) {
-        if (links_[light][p].empty()) continue;
+    for (std::uint32_t p : lit) {
         sumDirect(p);
         changed.push_back(h_.polygonElement(p));
     }
@@ -190,8 +203,8 @@ glm::dvec3 LightLinks::directBound() const {
     glm::dvec3 bound(0.0);
     for (std::size_t l = 0; l < links_.size(); ++l) {
         double peak = 0.0;
-        for (const auto& perPolygon : links_[l])
-            for (const LightLink& link : perPolygon) peak = std::max(peak, double(link.peak));
+        for (const auto& [p, links] : links_[l])
+            for (const LightLink& link : links) peak = std::max(peak, double(link.peak));
         bound += scene_.lights[l].intensity * peak;
     }
     return bound;
@@ -200,15 +213,17 @@ glm::dvec3 LightLinks::directBound() const {
 std::size_t LightLinks::linkCount() const {
     std::size_t n = 0;
     for (const auto& perLight : links_)
-        for (const auto& perPolygon : perLight) n += perPolygon.size();
+        for (const auto& [p, links] : perLight) n += links.size();
     return n;
 }
 
 std::size_t LightLinks::memoryBytes() const {
     std::size_t bytes = 0;
     for (const auto& perLight : links_) {
-        bytes += perLight.capacity() * sizeof(perLight[0]);
-        for (const auto& perPolygon : perLight) bytes += perPolygon.capacity() * sizeof(LightLink);
+        bytes += perLight.bucket_count() * sizeof(void*);
+        for (const auto& [p, links] : perLight)
+            bytes += sizeof(std::pair<const std::uint32_t, std::vector<LightLink>>) + 2 * sizeof(void*) +
+                     links.capacity() * sizeof(LightLink);
     }
     return bytes;
 }

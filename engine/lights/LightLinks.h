@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "geometry/RayCaster.h"
@@ -61,6 +62,11 @@ public:
 
     // Quadrature order over a receiver: order^2 points, one visibility ray each.
     static constexpr int kOrder = 4;
+    // A polygon whose whole area, seen at its nearest distance head-on,
+    // would bring less than this share of the threshold is not linked: it
+    // spares the rays toward the far rooms of a building, where the light
+    // could bring almost nothing even unoccluded.
+    static constexpr double kNegligible = 1e-3;
 
 private:
     struct LightLink {
@@ -87,7 +93,10 @@ private:
     Hierarchy& h_;
     const RayCaster& rays_;
     double threshold_ = 0.0;
-    std::vector<std::vector<std::vector<LightLink>>> links_;  // [light][polygon]
+    // Per light, the links of each polygon it reaches (sparse: a lamp in one
+    // room of a building reaches a few of its polygons).
+    std::vector<std::unordered_map<std::uint32_t, std::vector<LightLink>>> links_;
+    const std::vector<LightLink>& linksOf(std::size_t light, std::uint32_t polygon) const;
 };
 
 }  // namespace rad

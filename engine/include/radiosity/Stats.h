@@ -42,7 +42,7 @@ struct Warning {
 
 struct MemoryStats {
     std::size_t elements = 0;  // H-elements and their link lists
-    std::size_t links = 0;     // links and p-links
+    std::size_t links = 0;     // links and p-links, and the light links of punctual lights
     std::size_t total() const { return elements + links; }
 };
 
