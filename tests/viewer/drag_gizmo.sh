@@ -45,7 +45,13 @@ if [ -n "$pick2" ]; then
   sleep 0.5
   xdotool mousemove "$qx" "$qy"
   sleep 0.3
-  xdotool keydown shift click 1 keyup shift
+  # Shift held over a few frames on each side of the click: a slow (sanitizer)
+  # frame must not see the click without the shift, nor the shift's release first.
+  xdotool keydown shift
+  sleep 0.4
+  xdotool click 1
+  sleep 0.4
+  xdotool keyup shift
   # The gizmo moves to the object shift+clicked: its line is the second.
   for _ in $(seq 300); do [ "$(grep -c '^gizmo:' "$out/viewer.log")" -ge 2 ] && break; sleep 0.1; done
 fi
