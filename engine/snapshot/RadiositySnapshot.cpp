@@ -127,6 +127,9 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
 // keys (on all cores), not by a hash map.
 using Key = SnapshotCache::Key;
 
+// The smoothing's grid: a millionth of the scene's diagonal.
+double keyCellOf(const Aabb& box) { return std::max(1e-300, 1e-6 * glm::length(box.extent())); }
+
 Key vertexKey(const MeshSnapshot& mesh, std::uint32_t i, const glm::dvec3& origin, double cell) {
     const glm::dvec3 p = (glm::dvec3(mesh.positions[i]) - origin) / cell;
     const glm::dvec3 nrm = glm::dvec3(mesh.normals[i]) * 1e3;
@@ -153,7 +156,7 @@ void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vec
                           const std::vector<std::uint32_t>& outline, SnapshotCache& cache) {
     const Aabb box = scene.bounds();
     cache.keyOrigin = box.lo;
-    cache.keyCell = std::max(1e-300, 1e-6 * glm::length(box.extent()));
+    cache.keyCell = keyCellOf(box);
     const std::size_t n = outline.size();
     std::vector<std::pair<Key, std::uint32_t>>& keyed = cache.keyed;
     keyed.resize(n);
@@ -307,10 +310,13 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
     // Nothing re-meshed: the mesh assembled last time stands (a frame that
     // changed no radiosity, as when the budget held every link update back).
     // Parts re-meshed to the sizes they had: written in place.
+    // The smoothing keys are quantised in the scene's box: a box that
+    // changed (an object moved out of it) changes every key.
+    const Aabb box = scene.bounds();
     const bool same = cache.assembled && mesh.positions.size() == cache.vertices &&
                       mesh.indices.size() == cache.indices && mesh.linePositions.empty() &&
-                      cache.vertexAt.size() == polygons + 1 && scene.bounds().lo == cache.keyOrigin &&
-                      std::max(1e-300, 1e-6 * glm::length(scene.bounds().extent())) == cache.keyCell;
+                      cache.vertexAt.size() == polygons + 1 && box.lo == cache.keyOrigin &&
+                      keyCellOf(box) == cache.keyCell;
     if (same && patchInPlace(mesh, cache, remeshed)) return;
     // Each part's place in the mesh, then the parts copied on all cores.
     std::vector<std::size_t> vertexAt(polygons + 1, 0), indexAt(polygons + 1, 0), outlineAt(polygons + 1, 0);

@@ -125,21 +125,27 @@ TEST(PunctualLight, SpotLightSendsItsConeOnly) {
     EXPECT_EQ(floorRadiosity(engine, "ring"), 0.0);
 }
 
+// A floor of side 2a, a black square of side 2b at height y over its
+// centre, facing up, and a point light of intensity I at height h.
+constexpr double kA = 2.0, kH = 2.0, kB = 0.3, kY = 1.0, kIntensity = 10.0;
+Scene blockerScene(const TempDir& dir) {
+    GltfBuilder g;
+    addSquare(g, "floor", kA, 0.0, true, g.addGrey("grey", kRho));
+    addSquare(g, "blocker", kB, kY, true, g.addGrey("black", 0.0));
+    addLights(g, "[{\"type\":\"point\",\"intensity\":" + number(kIntensity) + "}]");
+    addLightNode(g, "bulb", 0, {0.0, kH, 0.0});
+    return loadGltf(g.writeEmbedded(dir).string());
+}
+
 // A black square between the light and the floor takes its solid angle out
 // of what the floor gets, whatever the sampling: rho I (Omega_floor -
 // Omega_blocker) / L^2.
 TEST(PunctualLight, ABlockerCastsItsShadow) {
     TempDir dir;
-    GltfBuilder g;
-    const double a = 2.0, h = 2.0, b = 0.3, y = 1.0, intensity = 10.0;
-    addSquare(g, "floor", a, 0.0, true, g.addGrey("grey", kRho));
-    addSquare(g, "blocker", b, y, true, g.addGrey("black", 0.0));
-    addLights(g, "[{\"type\":\"point\",\"intensity\":" + number(intensity) + "}]");
-    addLightNode(g, "bulb", 0, {0.0, h, 0.0});
-    Engine engine(loadGltf(g.writeEmbedded(dir).string()), EngineSettings{});
+    Engine engine(blockerScene(dir), EngineSettings{});
     engine.solve();
     const double expected =
-        kRho * intensity * (squareSolidAngle(a, h) - squareSolidAngle(b, h - y)) / (4.0 * a * a);
+        kRho * kIntensity * (squareSolidAngle(kA, kH) - squareSolidAngle(kB, kH - kY)) / (4.0 * kA * kA);
     EXPECT_NEAR(floorRadiosity(engine), expected, 0.01 * expected);
 }
 
@@ -172,19 +178,12 @@ TEST(PunctualLight, MovedAndDimmedLikeAnObject) {
 // takes it away: the update equals a solve of the scene as it ends.
 TEST(PunctualLight, AMovingBlockerShadowsThroughTheUpdate) {
     TempDir dir;
-    GltfBuilder g;
-    const double a = 2.0, h = 2.0, b = 0.3, y = 1.0, intensity = 10.0;
-    addSquare(g, "floor", a, 0.0, true, g.addGrey("grey", kRho));
-    addSquare(g, "blocker", b, y, true, g.addGrey("black", 0.0));
-    addLights(g, "[{\"type\":\"point\",\"intensity\":" + number(intensity) + "}]");
-    addLightNode(g, "bulb", 0, {0.0, h, 0.0});
-    const std::string file = g.writeEmbedded(dir).string();
-    Engine engine(loadGltf(file), EngineSettings{});
+    Engine engine(blockerScene(dir), EngineSettings{});
     engine.solve();
     const double shadowed = floorRadiosity(engine);
     // Out of the way: far to the side, above the light's height.
     engine.moveObjects({{"blocker", glm::translate(glm::dmat4(1.0), glm::dvec3(3.0, 2.0, 0.0))}});
-    const double open = kRho * intensity * squareSolidAngle(a, h) / (4.0 * a * a);
+    const double open = kRho * kIntensity * squareSolidAngle(kA, kH) / (4.0 * kA * kA);
     EXPECT_NEAR(floorRadiosity(engine), open, 0.01 * open);
     engine.moveObjects({{"blocker", glm::dmat4(1.0)}});
     EXPECT_NEAR(floorRadiosity(engine), shadowed, 0.001 * shadowed);
