@@ -132,6 +132,20 @@ struct Engine::State {
         meshValid = true;
         f.snapshotSeconds = secondsSince(start);
         f.totalSeconds += f.snapshotSeconds;
+        meshCost.record(f.changedLeaves, f.snapshotSeconds);
+    }
+    // Its time against the surface leaves the frame changed (their polygons
+    // are meshed again), so that a frame on a deadline leaves it the time
+    // it needs. The first guess: measured on `office`.
+    BudgetControl meshCost{1e-6};
+    // The settings the updater gets: a deadline is for the whole frame, of
+    // which `elapsed` seconds are gone and the lit mesh is still to come.
+    UpdateSettings forUpdater(const UpdateSettings& settings, double elapsed) {
+        const auto [base, perLeaf] = meshCost.model();
+        updater.setFrameTail({base, perLeaf});
+        UpdateSettings u = settings;
+        if (u.deadlineSeconds) u.deadlineSeconds = *u.deadlineSeconds - elapsed;
+        return u;
     }
     MeshSnapshot mesh;
     SnapshotCache meshParts;
@@ -674,7 +688,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     }
     s.updater.setObstacles(std::move(obstacles));
     const double moveSeconds = secondsSince(start);
-    FrameStats stats = s.updater.update(motions, settings);
+    FrameStats stats = s.updater.update(motions, s.forUpdater(settings, moveSeconds + choosingSeconds));
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds + choosingSeconds;
     stats.updateSeconds += choosingSeconds;
@@ -686,7 +700,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
 FrameStats Engine::refinePending(const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("refinePending before solve()");
-    FrameStats f = s.updater.refinePending(settings);
+    FrameStats f = s.updater.refinePending(s.forUpdater(settings, 0.0));
     // Idle with nothing left to refine: the link lists give back the growth
     // slack the moves left them.
     if (f.pending == 0) {
@@ -783,7 +797,8 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
         }
     }
     if (changed.empty()) return FrameStats{};  // the values they already have: nothing changes
-    FrameStats stats = s.updater.propagate(changed, settings);
+    const UpdateSettings inner = s.forUpdater(settings, 0.0);
+    FrameStats stats = s.updater.propagate(changed, inner);
     // The light changed everywhere its bounces reached, not in a region a
     // shaft bounds: refinement is judged again from it, as a solve of the
     // edited scene would judge (its threshold relative to the new emitted
@@ -796,7 +811,7 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
         s.setLightThreshold();
     }
     s.setOracles();
-    s.updater.judgeAgain(settings, stats);
+    s.updater.judgeAgain(inner, stats);
     anchorOracles(s.hierarchy);
     s.buildMesh(stats);
     return stats;

@@ -68,6 +68,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
         {"refined", st.refined},
         {"pending", st.pending},
         {"stale", st.stale},
+        {"unsent", st.unsent},
         {"estimated_error", st.estimatedError},
         {"changed_elements", st.changedElements},
         {"bounces", st.bounces},

@@ -42,6 +42,7 @@ void addFrame(FrameStats& into, const FrameStats& more) {
     into.reinstated += more.reinstated;
     into.refined += more.refined;
     into.changedElements += more.changedElements;
+    into.changedLeaves += more.changedLeaves;
     into.bounces += more.bounces;
     into.links = more.links;
     into.elements = more.elements;
@@ -115,6 +116,7 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
         if (control.targetFps) {
             record.targetSeconds = 1.0 / *control.targetFps;
             update.budget = engine.budgetFor(*record.targetSeconds);
+            update.deadlineSeconds = record.targetSeconds;
         }
         const double t = double(f) / frames;
         if (!moves.empty()) {
@@ -133,6 +135,7 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
             // What the move left of the frame's budget.
             UpdateSettings left = update;
             if (update.budget) left.budget = *update.budget - std::min(*update.budget, record.stats.spent);
+            if (update.deadlineSeconds) left.deadlineSeconds = *update.deadlineSeconds - record.stats.totalSeconds;
             try {
                 addFrame(record.stats, engine.editMaterials(frameEdits, left));
             } catch (const std::invalid_argument& error) {

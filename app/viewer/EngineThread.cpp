@@ -78,15 +78,14 @@ struct EngineThread::Worker {
         if (const auto light = s.findLight(name)) return static_cast<std::uint32_t>(s.objects.size() + *light);
         return s.findObject(name);
     }
-    // A move frame's budget comes from the target frame rate; an idle frame
-    // (catching up) works until the target frame time is up.
+    // A frame ends by the target frame time (its deadline); a move frame's
+    // budget also comes from the target frame rate. An idle frame (catching
+    // up) works until the target frame time is up.
     UpdateSettings update(bool idle = false) const {
         UpdateSettings u;
         if (!engine || !(targetFps > 0.0)) return u;
-        if (idle)
-            u.deadlineSeconds = 1.0 / targetFps;
-        else
-            u.budget = engine->budgetFor(1.0 / targetFps);
+        u.deadlineSeconds = 1.0 / targetFps;
+        if (!idle) u.budget = engine->budgetFor(1.0 / targetFps);
         return u;
     }
 };
@@ -370,20 +369,20 @@ void EngineThread::run() {
         std::deque<Command> commands;
         {
             std::unique_lock lock(queueMutex_);
-            const bool behind = w.engine && w.frame.pending + w.frame.stale > 0;
+            const bool behind = w.engine && w.frame.pending + w.frame.stale + w.frame.unsent > 0;
             if (queue_.empty() && !behind) queueCv_.wait(lock, [&] { return !queue_.empty(); });
             commands.swap(queue_);
         }
-        if (commands.empty()) {  // idle: update what earlier budgets left stale or coarse
+        if (commands.empty()) {  // idle: update what earlier frames left stale, coarse or unsent
             const std::size_t before = w.frame.pending + w.frame.stale;
             try {
                 w.frame = w.engine->refinePending(w.update(true));
             } catch (const std::exception& e) {
                 w.selectionNote = e.what();
-                w.frame.pending = w.frame.stale = 0;
+                w.frame.pending = w.frame.stale = w.frame.unsent = 0;
             }
-            if (w.frame.pending + w.frame.stale >= before && w.frame.spent == 0)
-                w.frame.pending = w.frame.stale = 0;  // no progress: stop
+            if (w.frame.pending + w.frame.stale >= before && w.frame.spent == 0 && w.frame.bounces == 0)
+                w.frame.pending = w.frame.stale = w.frame.unsent = 0;  // no progress: stop
             publish(true);
             continue;
         }

@@ -317,7 +317,7 @@ int runViewer(const ViewerOptions& options) {
             ps.budget = snap->budget;
             ps.budgetUnlimited = snap->budget == kUnlimited;
             ps.moves = snap->moves;
-            ps.pending = snap->frame.pending + snap->frame.stale;
+            ps.pending = snap->frame.pending + snap->frame.stale + snap->frame.unsent;
             ps.linksUpdated = snap->frame.linksUpdated;
             ps.lastUpdateMs = snap->frame.totalSeconds * 1e3;
             ps.estimatedError = snap->frame.estimatedError;

@@ -1,11 +1,14 @@
 // After the link update: further bounces (paper sec. 5.3.2) carry the change
 // of radiosity the partial push-pull (Fig. 7) found through the links leaving
-// each changed element, until nothing moves by more than the threshold; then
+// each changed element, until nothing moves by more than the threshold or a
+// deadline leaves no time for another bounce (the rest waits, unsent); then
 // refinement follows the light (OracleSteps.h): the links of elements whose
 // oracle stepped are judged again.
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 
@@ -14,18 +17,33 @@
 #include "solve/Solver.h"
 #include "update/LineSpaceUpdate.h"
 #include "update/OracleSteps.h"
+#include "update/Timing.h"
 
 namespace rad {
 
 void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats) {
     const double threshold = settings.bounceThreshold * referenceRadiosity_;
     std::vector<Transfer> transfers;
-    // What a receiver got that could not yet move its radiosity by the
-    // threshold waits here instead of pushing its subtree at every bounce
-    // (a cluster's push walks all of its members); one push at the end
-    // takes it all in.
-    std::vector<ElementId> waiting;
+    // What a deadline kept earlier frames from sending goes out with this
+    // frame's changes.
+    if (!unsent_.empty()) {
+        std::vector<char> listed(h_.size(), 0);
+        for (ElementId e : visited) listed[e] = 1;
+        for (ElementId e : unsent_)
+            if (!std::exchange(listed[e], 1)) visited.push_back(e);
+        unsent_.clear();
+    }
     for (int b = 0; b < settings.maxBounces; ++b) {
+        // On a deadline: a bounce that would leave too little time for the
+        // rest of the frame (expected to cost what the last one did) is not
+        // begun, and its senders wait.
+        if (outOfTime(stats.changedLeaves, bounceSeconds_)) {
+            for (ElementId e : visited)
+                if (!h_[e].outLinks.empty()) unsent_.push_back(e);
+            break;
+        }
+        const auto began = std::chrono::steady_clock::now();
+        const std::size_t leavesBefore = stats.changedLeaves;
         if (!collectTransfers(visited, threshold, transfers)) break;
         // In the serial order, so that every irradiance gets the same sum.
         // Bound by memory: the receivers a few transfers ahead are asked for early.
@@ -49,30 +67,41 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             if (waitingChange_.size() < h_.size()) waitingChange_.resize(h_.size(), -1.0);
             double& sum = waitingChange_[t.receiver];
             if (sum < 0.0) {
-                waiting.push_back(t.receiver);
+                waiting_.push_back(t.receiver);
                 sum = 0.0;
             }
             sum += std::abs(luminance(moved));
             if (sum > threshold) refiner_.markDirty(t.receiver);
         }
         ++stats.bounces;
-        std::erase_if(waiting, [&](ElementId e) {
+        std::erase_if(waiting_, [&](ElementId e) {
             if (!h_[e].dirty) return false;
             waitingChange_[e] = -1.0;  // pushed now
             return true;
         });
-        visited = solver_.partialPushPull(refiner_.takeDirty());
-        stats.changedElements += visited.size();
+        visited = pushPull(stats);
         touched_.insert(touched_.end(), visited.begin(), visited.end());
+        // Its cost, the meshing of the leaves it changed included; a cheap
+        // bounce lowers the expectation only by degrees.
+        const double took = secondsSince(began) + tail_.seconds(stats.changedLeaves - leavesBefore) - tail_.seconds(0);
+        bounceSeconds_ = std::max(took, 0.75 * bounceSeconds_);
     }
-    if (waiting.empty()) return;
-    for (ElementId e : waiting) {
+    // On a deadline, the push of what waits is left to a later frame when
+    // it would overrun (a cluster's push re-meshes all of its members).
+    if (waiting_.empty() || outOfTime(stats.changedLeaves, waitingPushSeconds_)) return;
+    const auto began = std::chrono::steady_clock::now();
+    const std::size_t leavesBefore = stats.changedLeaves;
+    for (ElementId e : waiting_) {
         waitingChange_[e] = -1.0;
-        refiner_.markDirty(e);
+        // Freed since it began waiting (a removed subdivision): nothing to push.
+        if (e == h_.root() || h_[e].parent != kNone) refiner_.markDirty(e);
     }
-    visited = solver_.partialPushPull(refiner_.takeDirty());
-    stats.changedElements += visited.size();
+    waiting_.clear();
+    visited = pushPull(stats);
     touched_.insert(touched_.end(), visited.begin(), visited.end());
+    waitingPushSeconds_ = std::max(secondsSince(began) + tail_.seconds(stats.changedLeaves - leavesBefore) -
+                                       tail_.seconds(0),
+                                   0.75 * waitingPushSeconds_);
 }
 
 bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, double threshold,
@@ -148,8 +177,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     const std::size_t used = stats.spent - spentBefore;
     refineFromHeap(heap, stats, budget == kUnlimited ? kUnlimited : (budget > used ? budget - used : 0));
     // The light that the new links carry, once around.
-    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
-    stats.changedElements += visited.size();
+    std::vector<ElementId> visited = pushPull(stats);
     bounce(std::move(visited), settings, stats);
     touched_.clear();  // what moved now is stepped at the next frame
 }

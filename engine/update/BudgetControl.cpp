@@ -43,6 +43,8 @@ std::optional<std::pair<double, double>> BudgetControl::fit() const {
     return std::pair{std::max(0.0, rest[rest.size() / 2]), initialCost_};
 }
 
+std::pair<double, double> BudgetControl::model() const { return fit().value_or(std::pair{0.0, initialCost_}); }
+
 std::size_t BudgetControl::budgetFor(double targetSeconds) const {
     const auto model = fit();
     if (!model) return 0;  // the first frame measures the fixed part

@@ -20,6 +20,9 @@ public:
     // overhead does not, and before the first frame: it measures the
     // overhead, which the first guess of the cost says nothing about).
     std::size_t budgetFor(double targetSeconds) const;
+    // The fitted (overhead, cost): what `updates` more would take is
+    // overhead + cost * updates. Before any frame: (0, the first guess).
+    std::pair<double, double> model() const;
 
 private:
     std::optional<std::pair<double, double>> fit() const;  // (overhead, cost), none before a frame

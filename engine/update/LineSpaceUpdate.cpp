@@ -9,6 +9,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_group.h>
 
+#include "hierarchy/ClusterShape.h"
 #include "refine/Refiner.h"
 #include "solve/Solver.h"
 #include "update/Timing.h"
@@ -43,6 +44,7 @@ FrameStats LineSpaceUpdate::update(const std::vector<ObjectMotion>& motions, con
     findModifiedLinks();
     stats.traversalSeconds = secondsSince(start);
     stats.shaftTests = shaftTests_;
+    startLinkUpdates();
 
     // 2. The second spends the budget top-down (Fig. 8): link updates,
     //    reinstated p-links; the stale links of earlier frames next; then
@@ -56,8 +58,7 @@ FrameStats LineSpaceUpdate::update(const std::vector<ObjectMotion>& motions, con
 
     // 3. Partial push-pull, then further bounces where radiosity changed.
     t = std::chrono::steady_clock::now();
-    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
-    stats.changedElements = visited.size();
+    std::vector<ElementId> visited = pushPull(stats);
     // The overlay on the other core: it reads positions and link ends, the
     // bounces write radiosity and irradiance.
     tbb::task_group overlay;
@@ -134,6 +135,7 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     stats.elements = h_.liveCount();
     stats.pending = pending_.size();
     stats.stale = stale_.size();
+    stats.unsent = unsent_.size() + waiting_.size();
     // Active links only: a p-link's transfer is carried by its children.
     const auto waitingIn = [&](const auto& ids) {
         return tbb::parallel_reduce(
@@ -147,7 +149,7 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
             },
             std::plus<>());
     };
-    const double waiting = waitingIn(pending_) + waitingIn(stale_);
+    const double waiting = waitingIn(pending_) + waitingIn(stale_) + unsentPower();
     const HElement& root = h_[h_.root()];
     const double power = root.area * luminance(root.radiosity);
     stats.estimatedError = power > 0.0 ? waiting / power : 0.0;
@@ -158,11 +160,52 @@ std::size_t LineSpaceUpdate::budgetLeft(std::size_t budget, std::size_t spent) {
     return budget == kUnlimited ? kUnlimited : budget - std::min(budget, spent);
 }
 
+namespace {
+std::chrono::steady_clock::duration seconds(double s) {
+    return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+}
+}  // namespace
+
 void LineSpaceUpdate::setDeadline(std::chrono::steady_clock::time_point start, const UpdateSettings& settings) {
     deadline_.reset();
-    if (settings.deadlineSeconds)
-        deadline_ = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                std::chrono::duration<double>(std::max(0.0, *settings.deadlineSeconds)));
+    if (settings.deadlineSeconds) deadline_ = start + seconds(std::max(0.0, *settings.deadlineSeconds));
+    startLinkUpdates();
+}
+
+void LineSpaceUpdate::startLinkUpdates() {
+    linkDeadline_.reset();
+    if (!deadline_) return;
+    const auto now = std::chrono::steady_clock::now();
+    const double left = std::chrono::duration<double>(*deadline_ - now).count() - tail_.seconds(0);
+    linkDeadline_ = now + seconds(std::max(0.0, left) / 2.0);
+}
+
+std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats) {
+    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
+    stats.changedElements += visited.size();
+    for (ElementId e : visited) stats.changedLeaves += h_[e].isSurface() && h_[e].children.empty();
+    return visited;
+}
+
+bool LineSpaceUpdate::outOfTime(std::size_t changedLeaves, double work) const {
+    return deadline_ &&
+           std::chrono::steady_clock::now() + seconds(work + tail_.seconds(changedLeaves)) > *deadline_;
+}
+
+double LineSpaceUpdate::unsentPower() const {
+    double power = 0.0;
+    for (ElementId e : unsent_) {
+        const HElement& el = h_[e];
+        if (el.outLinks.empty()) continue;
+        if (el.shape == kNone) {
+            power += std::abs(luminance(el.radiosity - el.gathered)) * el.area;
+            continue;
+        }
+        const ClusterShape& shape = h_.shape(e);
+        for (int k = 0; k < shape.facetCount; ++k) power += std::abs(luminance(shape.power[k] - shape.gathered[k]));
+    }
+    for (ElementId e : waiting_) power += std::max(0.0, waitingChange_[e]) * h_[e].area;
+    return power;
 }
 
 FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
@@ -188,8 +231,7 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     refineFromHeap(heap, stats, left());
     stats.updateSeconds = secondsSince(start);
     const auto t = std::chrono::steady_clock::now();
-    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
-    stats.changedElements = visited.size();
+    std::vector<ElementId> visited = pushPull(stats);
     // What catching up changed joins what the last move changed on show.
     recordOverlay(visited, true);
     touched_.assign(visited.begin(), visited.end());
@@ -215,8 +257,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     // steps 3 and 4 of a move: nothing moved, so no link changes its form
     // factor; what changed is the light the links carry.
     for (ElementId e : elements) refiner_.markDirty(e);
-    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
-    stats.changedElements = visited.size();
+    std::vector<ElementId> visited = pushPull(stats);
     recordOverlay(visited, false);
     bounce(std::move(visited), settings, stats);
     stats.pushPullSeconds = secondsSince(start);
@@ -240,8 +281,7 @@ void LineSpaceUpdate::judgeAgain(const UpdateSettings& settings, FrameStats& sta
     const std::size_t reinstated = reinstateUnneeded();
     stats.reinstated += reinstated;
     stats.spent += reinstated;
-    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
-    stats.changedElements += visited.size();
+    std::vector<ElementId> visited = pushPull(stats);
     bounce(std::move(visited), settings, stats);
     touched_.clear();  // the oracles are anchored at this light next (Engine)
     stats.updateSeconds += secondsSince(start);

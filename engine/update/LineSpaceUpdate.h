@@ -80,6 +80,17 @@ public:
     // moves nothing changes nothing. Returns how many.
     std::size_t reinstateUnneeded();
 
+    // What the frame does after the update, predicted from the surface
+    // leaves the update changed: building the lit mesh (the engine fits it from its
+    // frames). A deadline is for the whole frame, so the update stops early
+    // enough to leave it that time.
+    struct FrameTail {
+        double base = 0.0;
+        double perLeaf = 0.0;
+        double seconds(std::size_t changedLeaves) const { return base + perLeaf * double(changedLeaves); }
+    };
+    void setFrameTail(const FrameTail& tail) { tail_ = tail; }
+
     // What the last frame touched, for display (paper Fig. 5 b, c): the links
     // it modified (the centres of their two H-elements) and the surface
     // elements the traversal marked changed (their outlines), as segments.
@@ -151,10 +162,20 @@ private:
     void followTheLight(const UpdateSettings& settings, FrameStats& stats, std::size_t budget);
     // The oracles' floor, as a fraction of the scene's mean emitted radiosity.
     static constexpr double kOracleFloor = 1e-3;
+    // The partial push-pull of what is marked dirty (Fig. 7); counts the
+    // elements it visits in `stats`. Returns them.
+    std::vector<ElementId> pushPull(FrameStats& stats);
     std::vector<ElementId> touched_;  // elements the frame's push-pulls visited
     // Per element: how much the bounces could have moved its radiosity since
     // its last push; negative when it waits for none.
     std::vector<double> waitingChange_;
+    // The receivers whose arrivals could not yet move their radiosity by the
+    // threshold wait here instead of pushing their subtrees at every bounce
+    // (a cluster's push walks all of its members); one push at the end of
+    // the bounces takes it all in, unless a deadline leaves it to a later
+    // frame. What that push took, the meshing of its leaves included.
+    std::vector<ElementId> waiting_;
+    double waitingPushSeconds_ = 0.0;
     // A source's change of radiosity sent along one of its links.
     struct Transfer {
         ElementId receiver;
@@ -188,9 +209,26 @@ private:
     std::vector<LinkId> candidates_;
     std::size_t shaftTests_ = 0;
     std::size_t reinstated_ = 0;
-    // This frame's deadline (UpdateSettings::deadlineSeconds), if any.
-    std::optional<std::chrono::steady_clock::time_point> deadline_;
-    bool pastDeadline() const { return deadline_ && std::chrono::steady_clock::now() > *deadline_; }
+    // This frame's deadline (UpdateSettings::deadlineSeconds), if any, and
+    // the time link updates stop at: half of what is left before the
+    // deadline and its tail when they begin, the other half being for the
+    // push-pull and the bounces of what they changed.
+    std::optional<std::chrono::steady_clock::time_point> deadline_, linkDeadline_;
+    FrameTail tail_;
+    bool pastDeadline() const { return linkDeadline_ && std::chrono::steady_clock::now() > *linkDeadline_; }
+    // Link updates begin now: they get half of the time left.
+    void startLinkUpdates();
+    // Whether work expected to take `seconds` would make the frame, its
+    // tail included, overrun the deadline.
+    bool outOfTime(std::size_t changedLeaves, double seconds) const;
+    // What the last bounce took, the meshing of what it changed included.
+    double bounceSeconds_ = 0.0;
+    // Elements whose change of radiosity a deadline kept from being sent
+    // (bounced): the next bounce, in a later frame or idle time, sends it.
+    std::vector<ElementId> unsent_;
+    // The power they have yet to send, and the waiting receivers have yet
+    // to reflect (an upper bound of what it changes).
+    double unsentPower() const;
     // Link updates made between two looks at the clock.
     static constexpr std::size_t kDeadlineChunk = 1024;
     std::vector<LinkId> pending_;

@@ -221,6 +221,38 @@ TEST(StabilityControlledUpdate, DeadlineStopsTheWorkAndTheRestWaits) {
     EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
 }
 
+// The deadline covers the further bounces too: a frame past its deadline
+// begins no bounce, and the changed elements wait, unsent (counted, and in
+// the estimated error); idle time sends them, and the solution is then the
+// one an unlimited frame gives.
+TEST(StabilityControlledUpdate, DeadlineLeavesBouncesUnsentUntilIdle) {
+    Engine late(roomWithBlock(), coarse());
+    Engine free(roomWithBlock(), coarse());
+    ASSERT_TRUE(late.solve().converged);
+    ASSERT_TRUE(free.solve().converged);
+    UpdateSettings past;
+    past.deadlineSeconds = 0.0;
+    const FrameStats f = late.editMaterial("light", V(20.0), std::nullopt, past);
+    const FrameStats unlimited = free.editMaterial("light", V(20.0), std::nullopt);
+    EXPECT_GT(unlimited.bounces, 0);
+    EXPECT_EQ(f.bounces, 0);
+    EXPECT_GT(f.unsent, 0u);
+    EXPECT_GT(f.estimatedError, 0.0);
+    // The first push of the edited light is made: the picture is brighter
+    // at once, but not yet as bright as with its bounces.
+    const double lateRms = compareSamples(late.samples(), free.samples()).rms;
+    EXPECT_GT(lateRms, 1e-3);
+    const FrameStats still = late.refinePending(past);
+    EXPECT_EQ(still.bounces, 0);
+    EXPECT_EQ(still.unsent, f.unsent);
+    const FrameStats idle = late.refinePending();
+    EXPECT_GT(idle.bounces, 0);
+    EXPECT_EQ(idle.unsent, 0u);
+    EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3) << "before idle: " << lateRms;
+    const CoverageResult c = checkCoverage(late, 5u, 200);
+    EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
+}
+
 TEST(StabilityControlledUpdate, BudgetFromTargetFrameRate) {
     Engine engine(roomWithBlock(), coarse());
     ASSERT_TRUE(engine.solve().converged);

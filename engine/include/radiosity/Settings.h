@@ -52,10 +52,15 @@ struct UpdateSettings {
     // Link updates allowed per frame (sec. 6.1): recomputed links, reinstated
     // p-links and links created by refinement each count one. None: no limit.
     std::optional<std::size_t> budget;
-    // Frames on a deadline: link updates stop once the frame has run this
-    // long (checked between levels of the second traversal and between
-    // batches of about a thousand link updates), and what is left waits, as
-    // under a budget, for later frames and idle time. None: no limit.
+    // Frames on a deadline: the frame, the lit mesh included, is to end this
+    // many seconds after it began. Link updates get half of the time left
+    // when they begin (the clock is read between levels of the second
+    // traversal and between batches of about a thousand link updates), the
+    // push-pull and further bounces of what they changed the other half: a
+    // bounce is not begun once the time left would not cover it and the
+    // mesh. What is left waits (stale, pending or unsent) for later frames
+    // and idle time. The first traversal and the push-pull of what was
+    // updated always run. None: no limit.
     std::optional<double> deadlineSeconds;
     // Further bounces stop when no element's radiosity moved by more than
     // this fraction of the scene's mean emitted radiosity.

@@ -93,14 +93,17 @@ struct FrameStats {
     std::size_t reinstated = 0;
     std::size_t refined = 0;
     std::size_t changedElements = 0;  // visited by the partial push-pull
+    std::size_t changedLeaves = 0;    // of which surface leaves (their polygons are meshed again)
     std::size_t budget = 0;            // link updates allowed (kUnlimited: no limit)
     std::size_t budgetReinstated = 0;  // p-links reinstated for lack of budget
     std::size_t pending = 0;           // links left coarser than the criterion asks
     std::size_t stale = 0;             // links a budget left with the transfers of an earlier position
+    std::size_t unsent = 0;            // elements whose change a deadline kept from bouncing
     // A live estimate of how far the frame is from what an unlimited update
     // gives, in the units of SolutionError::rms: the power the stale and
     // pending links could still change (each link's potential transfer,
-    // B_s F A_r with the unoccluded F), over the scene's B A.
+    // B_s F A_r with the unoccluded F) and the unsent elements could still
+    // send (their change of B times their area), over the scene's B A.
     double estimatedError = 0.0;
     std::size_t spent = 0;             // link updates made, in budget units
     std::size_t links = 0;
