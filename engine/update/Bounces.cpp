@@ -37,7 +37,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         // On a deadline: a bounce that would leave too little time for the
         // rest of the frame (expected to cost what the last one did) is not
         // begun, and its senders wait.
-        if (outOfTime(stats.changedLeaves, bounceSeconds_)) {
+        if (!(idle_ && b == 0) && outOfTime(stats.changedLeaves, bounceSeconds_)) {
             for (ElementId e : visited)
                 if (!h_[e].outLinks.empty()) unsent_.push_back(e);
             break;
@@ -87,8 +87,10 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         bounceSeconds_ = std::max(took, 0.75 * bounceSeconds_);
     }
     // On a deadline, the push of what waits is left to a later frame when
-    // it would overrun (a cluster's push re-meshes all of its members).
-    if (waiting_.empty() || outOfTime(stats.changedLeaves, waitingPushSeconds_)) return;
+    // it would overrun (a cluster's push re-meshes all of its members), but
+    // not by an idle frame that has sent everything.
+    if (waiting_.empty() || (!(idle_ && unsent_.empty()) && outOfTime(stats.changedLeaves, waitingPushSeconds_)))
+        return;
     const auto began = std::chrono::steady_clock::now();
     const std::size_t leavesBefore = stats.changedLeaves;
     for (ElementId e : waiting_) {

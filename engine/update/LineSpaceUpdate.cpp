@@ -235,8 +235,10 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     // What catching up changed joins what the last move changed on show.
     recordOverlay(visited, true);
     touched_.assign(visited.begin(), visited.end());
+    idle_ = true;
     bounce(std::move(visited), settings, stats);
     followTheLight(settings, stats, left());
+    idle_ = false;
     stats.pushPullSeconds = secondsSince(t);
     finish(stats, start);
     return stats;

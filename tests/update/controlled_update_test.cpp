@@ -224,15 +224,23 @@ TEST(StabilityControlledUpdate, DeadlineStopsTheWorkAndTheRestWaits) {
 // The deadline covers the further bounces too: a frame past its deadline
 // begins no bounce, and the changed elements wait, unsent (counted, and in
 // the estimated error); idle time sends them, and the solution is then the
-// one an unlimited frame gives.
+// one an unlimited frame gives. An idle frame makes at least one bounce
+// whatever its deadline, so idle frames on a deadline already past finish
+// too (a viewer whose target frame time is shorter than a bounce still
+// converges); there the refinement that the arriving light asks for is made
+// in other steps, which leaves a slightly different hierarchy (measured:
+// 17,414 links against 17,442, 0.44% rms).
 TEST(StabilityControlledUpdate, DeadlineLeavesBouncesUnsentUntilIdle) {
     Engine late(roomWithBlock(), coarse());
+    Engine slow(roomWithBlock(), coarse());
     Engine free(roomWithBlock(), coarse());
     ASSERT_TRUE(late.solve().converged);
+    ASSERT_TRUE(slow.solve().converged);
     ASSERT_TRUE(free.solve().converged);
     UpdateSettings past;
     past.deadlineSeconds = 0.0;
     const FrameStats f = late.editMaterial("light", V(20.0), std::nullopt, past);
+    slow.editMaterial("light", V(20.0), std::nullopt, past);
     const FrameStats unlimited = free.editMaterial("light", V(20.0), std::nullopt);
     EXPECT_GT(unlimited.bounces, 0);
     EXPECT_EQ(f.bounces, 0);
@@ -242,15 +250,20 @@ TEST(StabilityControlledUpdate, DeadlineLeavesBouncesUnsentUntilIdle) {
     // at once, but not yet as bright as with its bounces.
     const double lateRms = compareSamples(late.samples(), free.samples()).rms;
     EXPECT_GT(lateRms, 1e-3);
-    const FrameStats still = late.refinePending(past);
-    EXPECT_EQ(still.bounces, 0);
-    EXPECT_EQ(still.unsent, f.unsent);
     const FrameStats idle = late.refinePending();
     EXPECT_GT(idle.bounces, 0);
     EXPECT_EQ(idle.unsent, 0u);
     EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3) << "before idle: " << lateRms;
     const CoverageResult c = checkCoverage(late, 5u, 200);
     EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
+
+    FrameStats step = slow.refinePending(past);
+    EXPECT_GE(step.bounces, 1);
+    int frames = 1;
+    for (; frames < 200 && step.unsent + step.pending > 0; ++frames) step = slow.refinePending(past);
+    EXPECT_EQ(step.unsent + step.pending, 0u) << "after " << frames << " idle frames";
+    EXPECT_EQ(step.estimatedError, 0.0);
+    EXPECT_LT(compareSamples(slow.samples(), free.samples()).rms, 0.01);
 }
 
 TEST(StabilityControlledUpdate, BudgetFromTargetFrameRate) {
