@@ -21,6 +21,33 @@
 
 namespace rad {
 
+namespace {
+
+// Keeps in `v` its elements of highest priority whose costs add up to
+// `share` of the total (at least one), and moves the others to `rest`.
+template <class Cost, class Priority>
+void keepShare(std::vector<ElementId>& v, double share, std::vector<ElementId>& rest, const Cost& cost,
+               const Priority& priority) {
+    std::vector<std::pair<double, ElementId>> order;
+    double total = 0.0;
+    for (ElementId e : v) {
+        order.emplace_back(priority(e), e);
+        total += cost(e);
+    }
+    std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    v.clear();
+    double used = 0.0;
+    for (const auto& [p, e] : order) {
+        used += cost(e);
+        if (v.empty() || used <= share * total)
+            v.push_back(e);
+        else
+            rest.push_back(e);
+    }
+}
+
+}  // namespace
+
 void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats) {
     const double threshold = settings.bounceThreshold * referenceRadiosity_;
     std::vector<Transfer> transfers;
@@ -34,13 +61,23 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         unsent_.clear();
     }
     for (int b = 0; b < settings.maxBounces; ++b) {
-        // On a deadline: a bounce that would leave too little time for the
-        // rest of the frame (expected to cost what the last one did) is not
-        // begun, and its senders wait.
-        if (!(idle_ && b == 0) && outOfTime(stats.changedLeaves, bounceSeconds_)) {
+        // On a deadline: a bounce expected to cost what the last one did,
+        // its meshing included, is made only in the share that leaves the
+        // frame its time, by the senders with the most power to send; the
+        // others wait, unsent.
+        const double share = idle_ && b == 0 ? 1.0 : shareThatFits(stats.changedLeaves, bounceSeconds_);
+        if (share < 1.0) {
+            std::vector<ElementId> senders;
             for (ElementId e : visited)
-                if (!h_[e].outLinks.empty()) unsent_.push_back(e);
-            break;
+                if (!h_[e].outLinks.empty()) senders.push_back(e);
+            if (share < kLeastShare) {
+                unsent_.insert(unsent_.end(), senders.begin(), senders.end());
+                break;
+            }
+            keepShare(
+                senders, share, unsent_, [&](ElementId e) { return double(h_[e].outLinks.size()); },
+                [&](ElementId e) { return unsentPowerOf(e); });
+            visited = std::move(senders);
         }
         const auto began = std::chrono::steady_clock::now();
         const std::size_t leavesBefore = stats.changedLeaves;
@@ -84,26 +121,33 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         // Its cost, the meshing of the leaves it changed included; a cheap
         // bounce lowers the expectation only by degrees.
         const double took = secondsSince(began) + tail_.seconds(stats.changedLeaves - leavesBefore) - tail_.seconds(0);
-        bounceSeconds_ = std::max(took, 0.75 * bounceSeconds_);
+        bounceSeconds_ = std::max(took / share, 0.75 * bounceSeconds_);
     }
-    // On a deadline, the push of what waits is left to a later frame when
-    // it would overrun (a cluster's push re-meshes all of its members), but
-    // not by an idle frame that has sent everything.
-    if (waiting_.empty() || (!(idle_ && unsent_.empty()) && outOfTime(stats.changedLeaves, waitingPushSeconds_)))
-        return;
+    std::sort(unsent_.begin(), unsent_.end());
+    unsent_.erase(std::unique(unsent_.begin(), unsent_.end()), unsent_.end());
+    // On a deadline, the push of what waits is made only in the share that
+    // fits (a cluster's push re-meshes all of its members), largest changes
+    // first, but in full by an idle frame that has sent everything.
+    if (waiting_.empty()) return;
+    const double share = idle_ && unsent_.empty() ? 1.0 : shareThatFits(stats.changedLeaves, waitingPushSeconds_);
+    if (share < kLeastShare) return;
+    std::vector<ElementId> pushed;
+    pushed.swap(waiting_);
+    if (share < 1.0)
+        keepShare(
+            pushed, share, waiting_, [](ElementId) { return 1.0; },
+            [&](ElementId e) { return waitingChange_[e] * h_[e].area; });
     const auto began = std::chrono::steady_clock::now();
     const std::size_t leavesBefore = stats.changedLeaves;
-    for (ElementId e : waiting_) {
+    for (ElementId e : pushed) {
         waitingChange_[e] = -1.0;
         // Freed since it began waiting (a removed subdivision): nothing to push.
         if (e == h_.root() || h_[e].parent != kNone) refiner_.markDirty(e);
     }
-    waiting_.clear();
     visited = pushPull(stats);
     touched_.insert(touched_.end(), visited.begin(), visited.end());
-    waitingPushSeconds_ = std::max(secondsSince(began) + tail_.seconds(stats.changedLeaves - leavesBefore) -
-                                       tail_.seconds(0),
-                                   0.75 * waitingPushSeconds_);
+    const double took = secondsSince(began) + tail_.seconds(stats.changedLeaves - leavesBefore) - tail_.seconds(0);
+    waitingPushSeconds_ = std::max(took / share, 0.75 * waitingPushSeconds_);
 }
 
 bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, double threshold,

@@ -187,23 +187,27 @@ std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats) {
     return visited;
 }
 
-bool LineSpaceUpdate::outOfTime(std::size_t changedLeaves, double work) const {
-    return deadline_ &&
-           std::chrono::steady_clock::now() + seconds(work + tail_.seconds(changedLeaves)) > *deadline_;
+double LineSpaceUpdate::shareThatFits(std::size_t changedLeaves, double work) const {
+    if (!deadline_) return 1.0;
+    const double left = std::chrono::duration<double>(*deadline_ - std::chrono::steady_clock::now()).count() -
+                        tail_.seconds(changedLeaves);
+    if (!(left > 0.0)) return 0.0;
+    return work > left ? left / work : 1.0;
+}
+
+double LineSpaceUpdate::unsentPowerOf(ElementId e) const {
+    const HElement& el = h_[e];
+    if (el.outLinks.empty()) return 0.0;
+    if (el.shape == kNone) return std::abs(luminance(el.radiosity - el.gathered)) * el.area;
+    const ClusterShape& shape = h_.shape(e);
+    double power = 0.0;
+    for (int k = 0; k < shape.facetCount; ++k) power += std::abs(luminance(shape.power[k] - shape.gathered[k]));
+    return power;
 }
 
 double LineSpaceUpdate::unsentPower() const {
     double power = 0.0;
-    for (ElementId e : unsent_) {
-        const HElement& el = h_[e];
-        if (el.outLinks.empty()) continue;
-        if (el.shape == kNone) {
-            power += std::abs(luminance(el.radiosity - el.gathered)) * el.area;
-            continue;
-        }
-        const ClusterShape& shape = h_.shape(e);
-        for (int k = 0; k < shape.facetCount; ++k) power += std::abs(luminance(shape.power[k] - shape.gathered[k]));
-    }
+    for (ElementId e : unsent_) power += unsentPowerOf(e);
     for (ElementId e : waiting_) power += std::max(0.0, waitingChange_[e]) * h_[e].area;
     return power;
 }

@@ -218,9 +218,11 @@ private:
     bool pastDeadline() const { return linkDeadline_ && std::chrono::steady_clock::now() > *linkDeadline_; }
     // Link updates begin now: they get half of the time left.
     void startLinkUpdates();
-    // Whether work expected to take `seconds` would make the frame, its
-    // tail included, overrun the deadline.
-    bool outOfTime(std::size_t changedLeaves, double seconds) const;
+    // The share of work expected to take `seconds` that leaves the frame,
+    // its tail included, within the deadline (1: all of it, or no deadline).
+    double shareThatFits(std::size_t changedLeaves, double seconds) const;
+    // Below this share a bounce or push is not begun.
+    static constexpr double kLeastShare = 0.1;
     // What the last bounce took, the meshing of what it changed included.
     double bounceSeconds_ = 0.0;
     // An idle frame (refinePending) begins its first bounce whatever the
@@ -231,8 +233,9 @@ private:
     // (bounced): the next bounce, in a later frame or idle time, sends it.
     std::vector<ElementId> unsent_;
     // The power they have yet to send, and the waiting receivers have yet
-    // to reflect (an upper bound of what it changes).
+    // to reflect (an upper bound of what it changes); one element's.
     double unsentPower() const;
+    double unsentPowerOf(ElementId e) const;
     // Link updates made between two looks at the clock.
     static constexpr std::size_t kDeadlineChunk = 1024;
     std::vector<LinkId> pending_;
