@@ -45,10 +45,24 @@ std::optional<std::pair<double, double>> BudgetControl::fit() const {
 
 std::pair<double, double> BudgetControl::model() const { return fit().value_or(std::pair{0.0, initialCost_}); }
 
+double BudgetControl::spread() const {
+    if (frames_.empty()) return 0.0;
+    const auto [overhead, cost] = model();
+    std::vector<double> above;
+    for (const auto& [x, y] : frames_) above.push_back(y - overhead - cost * x);
+    const auto at = above.begin() + std::ptrdiff_t(above.size() * 4 / 5);
+    std::nth_element(above.begin(), at, above.end());
+    return std::max(0.0, *at);
+}
+
 std::size_t BudgetControl::budgetFor(double targetSeconds) const {
     const auto model = fit();
     if (!model) return 0;  // the first frame measures the fixed part
-    const auto [overhead, cost] = *model;
+    // Frames of one budget vary (what a link update changes, and the
+    // meshing of it): the budget is the one whose frames come within the
+    // target four times in five, not on average.
+    const auto [fitted, cost] = *model;
+    const double overhead = fitted + spread();
     if (!(cost > 0.0) || !(targetSeconds > overhead)) return 0;
     const double budget = (targetSeconds - overhead) / cost;
     return budget >= 1e15 ? std::size_t(1e15) : static_cast<std::size_t>(budget);

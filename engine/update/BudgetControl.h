@@ -23,6 +23,9 @@ public:
     // The fitted (overhead, cost): what `updates` more would take is
     // overhead + cost * updates. Before any frame: (0, the first guess).
     std::pair<double, double> model() const;
+    // How far above the model frames come: the 80th percentile of the
+    // frames' time less the model's (0 before any frame).
+    double spread() const;
 
 private:
     std::optional<std::pair<double, double>> fit() const;  // (overhead, cost), none before a frame
