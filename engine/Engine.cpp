@@ -138,6 +138,14 @@ struct Engine::State {
     // are meshed again), so that a frame on a deadline leaves it the time
     // it needs. The first guess: measured on `office`.
     BudgetControl meshCost{1e-6};
+    // When light links stop refining in a frame that began at `start`: half
+    // of its deadline, after `elapsed` seconds spent before it.
+    std::optional<LightLinks::Clock::time_point> lightDeadline(std::chrono::steady_clock::time_point start,
+                                                               const UpdateSettings& settings, double elapsed) const {
+        if (!settings.deadlineSeconds) return std::nullopt;
+        const double seconds = std::max(0.0, *settings.deadlineSeconds - elapsed) / 2.0;
+        return start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+    }
     // The settings the updater gets: a deadline is for the whole frame, of
     // which `elapsed` seconds are gone and the lit mesh is still to come.
     UpdateSettings forUpdater(const UpdateSettings& settings, double elapsed) {
@@ -672,7 +680,10 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // The light links: the lights that moved are linked again everywhere;
     // for the others, the polygons the objects moved on, and those whose
     // shafts toward a light the objects cross before or after the move.
+    // On a deadline they get up to half of the frame; what they could not
+    // refine in it waits, pending, linked coarser.
     if (!s.scene.lights.empty()) {
+        const auto lightDeadline = s.lightDeadline(start, settings, choosingSeconds);
         std::vector<Aabb> boxes;
         std::vector<std::uint32_t> relinked;
         for (const ObjectMotion& m : motions) boxes.insert(boxes.end(), {m.oldBox, m.newBox});
@@ -683,13 +694,13 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         }
         std::sort(relinked.begin(), relinked.end());
         relinked.erase(std::unique(relinked.begin(), relinked.end()), relinked.end());
-        std::vector<ElementId> changed = s.lightLinks.relink(relinked);
+        std::vector<ElementId> changed = s.lightLinks.relink(relinked, std::nullopt, lightDeadline);
         for (const auto& [light, worldFromLocal] : lights) {
             PunctualLight& l = s.scene.lights[light];
             l.worldFromLocal = worldFromLocal;
             l.position = glm::dvec3(worldFromLocal * glm::dvec4(0.0, 0.0, 0.0, 1.0));
             l.direction = glm::normalize(glm::dmat3(worldFromLocal) * glm::dvec3(0.0, 0.0, -1.0));
-            for (ElementId e : s.lightLinks.relinkLight(light)) changed.push_back(e);
+            for (ElementId e : s.lightLinks.relinkLight(light, lightDeadline)) changed.push_back(e);
         }
         s.lightChanged(changed);
     }
@@ -698,6 +709,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     FrameStats stats = s.updater.update(motions, s.forUpdater(settings, moveSeconds + choosingSeconds));
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds + choosingSeconds;
+    stats.pending += s.lightLinks.pendingCount();
     stats.updateSeconds += choosingSeconds;
     s.buildMesh(stats);
     s.budget.record(stats.spent, stats.totalSeconds);
@@ -707,7 +719,15 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
 FrameStats Engine::refinePending(const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("refinePending before solve()");
-    FrameStats f = s.updater.refinePending(s.forUpdater(settings, 0.0));
+    const auto start = std::chrono::steady_clock::now();
+    // The light links a deadline left coarse first: their light then goes
+    // out with the rest of what catching up changes.
+    s.lightChanged(s.lightLinks.refinePending(s.lightDeadline(start, settings, 0.0)));
+    const double lightSeconds = secondsSince(start);
+    FrameStats f = s.updater.refinePending(s.forUpdater(settings, lightSeconds));
+    f.updateSeconds += lightSeconds;
+    f.totalSeconds += lightSeconds;
+    f.pending += s.lightLinks.pendingCount();
     // Idle with nothing left to refine: the link lists give back the growth
     // slack the moves left them.
     if (f.pending == 0) {

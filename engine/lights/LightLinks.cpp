@@ -10,7 +10,10 @@
 
 namespace rad {
 
-void LightLinks::sizeTables() { links_.resize(scene_.lights.size()); }
+void LightLinks::sizeTables() {
+    links_.resize(scene_.lights.size());
+    pending_.resize(scene_.lights.size());
+}
 
 const std::vector<LightLinks::LightLink>& LightLinks::linksOf(std::size_t light, std::uint32_t polygon) const {
     static const std::vector<LightLink> none;
@@ -66,7 +69,8 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
     return out;
 }
 
-void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>& polygons) {
+void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>& polygons,
+                      std::optional<Clock::time_point> deadline) {
     const PunctualLight& light = scene_.lights[lightIndex];
     const double intensity = luminance(light.intensity);
     struct Item {
@@ -76,6 +80,7 @@ void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>
     std::vector<Item> frontier;
     for (std::uint32_t p : polygons) {
         links_[lightIndex].erase(p);
+        pending_[lightIndex].erase(p);
         if (!(intensity > 0.0) || h_.polygonElement(p) == kNone || !facesLight(light, p)) continue;
         const Polygon& poly = scene_.polygons[p];
         Aabb box;
@@ -91,10 +96,17 @@ void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>
         tbb::parallel_for(std::size_t(0), frontier.size(),
                           [&](std::size_t i) { estimates[i] = estimate(light, frontier[i].element); });
         std::vector<Item> next;
+        // Past the deadline, this level is the last: what it would refine
+        // is linked as it is and waits.
+        const bool late = deadline && Clock::now() > *deadline;
         for (std::size_t i = 0; i < frontier.size(); ++i) {
             const auto [polygon, e] = frontier[i];
             const Estimate& est = estimates[i];
-            const bool refine = intensity * est.spread * h_[e].area > threshold_ && h_.canSubdivide(e);
+            bool refine = intensity * est.spread * h_[e].area > threshold_ && h_.canSubdivide(e);
+            if (refine && late) {
+                pending_[lightIndex].insert(polygon);
+                refine = false;
+            }
             if (refine) {
                 h_.subdivide(e);
                 for (ElementId c : h_[e].children) next.push_back({polygon, c});
@@ -128,12 +140,13 @@ void LightLinks::linkAll() {
     sizeTables();
     std::vector<std::uint32_t> all(scene_.polygons.size());
     for (std::uint32_t p = 0; p < all.size(); ++p) all[p] = p;
-    for (std::uint32_t l = 0; l < scene_.lights.size(); ++l) link(l, all);
+    for (std::uint32_t l = 0; l < scene_.lights.size(); ++l) link(l, all, std::nullopt);
     for (std::uint32_t p : all) sumDirect(p);
 }
 
 std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& polygons,
-                                          std::optional<std::uint32_t> light) {
+                                          std::optional<std::uint32_t> light,
+                                          std::optional<Clock::time_point> deadline) {
     sizeTables();
     std::vector<ElementId> changed;
     if (scene_.lights.empty()) return changed;
@@ -142,7 +155,7 @@ std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& poly
     for (std::size_t l = 0; l < links_.size(); ++l)
         for (std::uint32_t p : polygons) before[l].push_back(linksOf(l, p));
     for (std::uint32_t l = 0; l < scene_.lights.size(); ++l)
-        if (!light || *light == l) link(l, polygons);
+        if (!light || *light == l) link(l, polygons, deadline);
     for (std::size_t i = 0; i < polygons.size(); ++i) {
         bool same = true;
         for (std::size_t l = 0; l < links_.size(); ++l) same = same && before[l][i] == linksOf(l, polygons[i]);
@@ -153,10 +166,36 @@ std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& poly
     return changed;
 }
 
-std::vector<ElementId> LightLinks::relinkLight(std::uint32_t light) {
+std::vector<ElementId> LightLinks::relinkLight(std::uint32_t light, std::optional<Clock::time_point> deadline) {
     std::vector<std::uint32_t> all(scene_.polygons.size());
     for (std::uint32_t p = 0; p < all.size(); ++p) all[p] = p;
-    return relink(all, light);
+    return relink(all, light, deadline);
+}
+
+std::vector<ElementId> LightLinks::refinePending(std::optional<Clock::time_point> deadline) {
+    sizeTables();
+    // A few polygons at a time, each refined in full: an idle frame always
+    // makes progress, however short its deadline.
+    constexpr std::size_t kChunk = 16;
+    std::vector<ElementId> changed;
+    bool first = true;
+    for (std::uint32_t l = 0; l < pending_.size(); ++l) {
+        while (!pending_[l].empty()) {
+            if (!first && deadline && Clock::now() > *deadline) return changed;
+            first = false;
+            std::vector<std::uint32_t> chunk;
+            for (auto it = pending_[l].begin(); it != pending_[l].end() && chunk.size() < kChunk; ++it)
+                chunk.push_back(*it);
+            for (ElementId e : relink(chunk, l)) changed.push_back(e);
+        }
+    }
+    return changed;
+}
+
+std::size_t LightLinks::pendingCount() const {
+    std::size_t n = 0;
+    for (const auto& polygons : pending_) n += polygons.size();
+    return n;
 }
 
 std::vector<ElementId> LightLinks::refreshIntensity(std::uint32_t light) {

@@ -15,8 +15,10 @@
 // it under the energy guard's reach (a light is not a surface that form
 // factors see) and pushes it down the quadtree whole.
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <unordered_map>
 #include <vector>
 
@@ -38,16 +40,28 @@ public:
     // times its area exceeds it.
     void setThreshold(double power) { threshold_ = power; }
 
+    using Clock = std::chrono::steady_clock;
+
     // Links every light to every polygon, from scratch; sets every element's
     // direct irradiance.
     void linkAll();
     // Links the given polygons again (after they or something between them
     // and a light moved), to every light or to `light` only. Returns the
-    // polygons' surface elements whose direct light changed.
+    // polygons' surface elements whose direct light changed. On a deadline,
+    // refinement stops at the level it has reached when the clock passes it
+    // (every polygon is linked, coarser than the threshold asks where it
+    // stopped), and those polygons wait, pending, to be linked again.
     std::vector<ElementId> relink(const std::vector<std::uint32_t>& polygons,
-                                  std::optional<std::uint32_t> light = std::nullopt);
+                                  std::optional<std::uint32_t> light = std::nullopt,
+                                  std::optional<Clock::time_point> deadline = std::nullopt);
     // Every polygon, for one light (it moved).
-    std::vector<ElementId> relinkLight(std::uint32_t light);
+    std::vector<ElementId> relinkLight(std::uint32_t light, std::optional<Clock::time_point> deadline = std::nullopt);
+    // Links the pending polygons again, refined to the threshold, a few at a
+    // time until the deadline (at least a few, so that idle time converges).
+    // Returns the elements whose direct light changed.
+    std::vector<ElementId> refinePending(std::optional<Clock::time_point> deadline);
+    // Polygons a deadline left linked coarser than the threshold asks, over all lights.
+    std::size_t pendingCount() const;
     // The direct light summed again after `light`'s intensity changed.
     // Returns the polygon elements it reaches.
     std::vector<ElementId> refreshIntensity(std::uint32_t light);
@@ -82,7 +96,8 @@ private:
     Estimate estimate(const PunctualLight& light, ElementId receiver) const;
     // Refines the links of one light to the given polygons, level by level:
     // the estimates of a level on all cores, its subdivisions in order.
-    void link(std::uint32_t light, const std::vector<std::uint32_t>& polygons);
+    void link(std::uint32_t light, const std::vector<std::uint32_t>& polygons,
+              std::optional<Clock::time_point> deadline);
     // Clears the direct light of a polygon's quadtree and adds every light's
     // links to it; whether anything changed is for the caller to know.
     void sumDirect(std::uint32_t polygon);
@@ -96,6 +111,8 @@ private:
     // Per light, the links of each polygon it reaches (sparse: a lamp in one
     // room of a building reaches a few of its polygons).
     std::vector<std::unordered_map<std::uint32_t, std::vector<LightLink>>> links_;
+    // Per light, the polygons a deadline left coarse.
+    std::vector<std::set<std::uint32_t>> pending_;
     const std::vector<LightLink>& linksOf(std::size_t light, std::uint32_t polygon) const;
 };
 

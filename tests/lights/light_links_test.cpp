@@ -174,6 +174,30 @@ TEST(PunctualLight, MovedAndDimmedLikeAnObject) {
     EXPECT_THROW(engine.editMaterial("bulb", std::nullopt, glm::dvec3(0.5)), std::invalid_argument);
 }
 
+// A light moved on a deadline already past is linked at the first level only
+// (every polygon facing it, coarse); the polygons left coarse wait, pending,
+// and idle frames on the same deadline link them in full, a few at a time:
+// the floor then equals a solve with the light where it ended.
+TEST(PunctualLight, AMovedLightOnADeadlineIsRefinedWhenIdle) {
+    TempDir dir;
+    const double a = 1.0, h = 1.0, intensity = 10.0;
+    Engine engine(pointOverFloor(dir, a, h, intensity), EngineSettings{});
+    engine.solve();
+    const glm::dvec3 to(0.4, 0.8, -0.3);
+    UpdateSettings past;
+    past.deadlineSeconds = 0.0;
+    const FrameStats moved = engine.moveObjects({{"bulb", glm::translate(glm::dmat4(1.0), to)}}, past);
+    EXPECT_GT(moved.pending, 0u);
+    Scene scene = pointOverFloor(dir, a, h, intensity);
+    scene.lights[0].position = to;
+    Engine fresh(std::move(scene), EngineSettings{});
+    fresh.solve();
+    FrameStats idle = engine.refinePending(past);
+    for (int i = 0; i < 100 && idle.pending > 0; ++i) idle = engine.refinePending(past);
+    EXPECT_EQ(idle.pending, 0u);
+    EXPECT_NEAR(floorRadiosity(engine), floorRadiosity(fresh), 0.01 * floorRadiosity(fresh));
+}
+
 // An object that moves into the light's path casts its shadow, and leaving
 // takes it away: the update equals a solve of the scene as it ends.
 TEST(PunctualLight, AMovingBlockerShadowsThroughTheUpdate) {

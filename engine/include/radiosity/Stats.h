@@ -96,7 +96,7 @@ struct FrameStats {
     std::size_t changedLeaves = 0;    // of which surface leaves (their polygons are meshed again)
     std::size_t budget = 0;            // link updates allowed (kUnlimited: no limit)
     std::size_t budgetReinstated = 0;  // p-links reinstated for lack of budget
-    std::size_t pending = 0;           // links left coarser than the criterion asks
+    std::size_t pending = 0;           // links left coarser than the criterion asks (and polygons' light links)
     std::size_t stale = 0;             // links a budget left with the transfers of an earlier position
     std::size_t unsent = 0;            // elements whose change a deadline kept from bouncing
     // A live estimate of how far the frame is from what an unlimited update
