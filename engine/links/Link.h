@@ -21,7 +21,14 @@ struct Link {
     // point approximation (the source's projected area over pi d^2); each
     // member surface takes G times its own cosine toward the source (see
     // solve/ClusterTransfer.h).
-    double unoccluded = 0.0;
+    float unoccluded = 0.0f;
+    // The transfer the receiver's irradiance currently holds for this link
+    // (formFactor() when it was gathered); the in-place gather (eq. 1, 2)
+    // adds the source's B times its change. Single precision, like the
+    // other per-link numbers: the receiver's irradiance, a double, takes
+    // exactly the value stored here off again when the link changes, so
+    // moves away and back still return the solution (a link is 32 bytes).
+    float gathered = 0.0f;
     // How much the unoccluded point form factor varies across the receiver
     // (max - min at the quadrature points): where it is large, pushing the
     // mean down the receiver's subtree is a poor approximation.
@@ -33,23 +40,23 @@ struct Link {
     // more than far ones), so a ray blocked by both counts once. It is kept
     // in `visible`, set whenever a mask changes (Refiner), because the
     // weights need the geometry.
+    float visible = 1.0f;
     std::uint16_t blockedStatic = 0;
     std::uint16_t blockedDynamic = 0;
     std::uint8_t rays = 0;
-    float visible = 1.0f;
     bool passive = false;
     bool live = false;
     // The visibility masks are out of date: a p-link that is refined whatever
     // its visibility needs none to be judged, and gets it if it is made
     // active again (Refiner::activate).
     bool visStale = false;
-    // The transfer the receiver's irradiance currently holds for this link;
-    // the in-place gather (eq. 1, 2) adds the source's B times its change.
-    double gathered = 0.0;
 
     double visibility() const { return visible; }
-    double formFactor() const { return unoccluded * visibility(); }
+    // Rounded as `gathered` stores it, so that a link gathered at its form
+    // factor compares equal to it.
+    double formFactor() const { return static_cast<float>(double(unoccluded) * visibility()); }
 };
+static_assert(sizeof(Link) == 32, "a link is two ids, four floats, two masks and four bytes of flags");
 
 // All links and p-links, addressed by LinkId; freed slots are reused. They
 // live in fixed-size chunks: a store of a million links grows without ever
@@ -86,7 +93,7 @@ public:
     }
 
 private:
-    static constexpr unsigned kShift = 13;  // 8192 links (384 KiB) a chunk
+    static constexpr unsigned kShift = 13;  // 8192 links (256 KiB) a chunk
     static constexpr LinkId kMask = (LinkId(1) << kShift) - 1;
     using Chunk = std::array<Link, std::size_t(1) << kShift>;
     std::vector<std::unique_ptr<Chunk>> chunks_;

@@ -333,7 +333,7 @@ std::vector<ElementId> Refiner::takeDirty() {
         double sum = 0.0;
         for (LinkId id : e.links) {
             const Link& l = links_[id];
-            irradiance += l.gathered * sentRadiosity(h_, l);
+            irradiance += double(l.gathered) * sentRadiosity(h_, l);
             sum += l.gathered;
         }
         e.irradiance = irradiance;

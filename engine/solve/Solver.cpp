@@ -24,7 +24,7 @@ void Solver::gatherAll() {
             Link& link = links_[l];
             link.gathered = link.formFactor();
             if (!e.isSurface()) continue;  // a cluster's arrivals are resolved when it is pushed
-            irradiance += link.gathered * sentRadiosity(h_, link);
+            irradiance += double(link.gathered) * sentRadiosity(h_, link);
             sum += link.gathered;
         }
         e.irradiance = irradiance;

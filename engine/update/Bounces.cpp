@@ -191,7 +191,7 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
         }
         for (std::size_t j = 0; j < el.outLinks.size(); ++j) {
             const Link& l = links_[el.outLinks[j]];
-            transfers[first[k] + j] = Transfer{l.receiver, l.source, l.gathered * sentChange(h_, l, delta, facetDelta)};
+            transfers[first[k] + j] = Transfer{l.receiver, l.source, double(l.gathered) * sentChange(h_, l, delta, facetDelta)};
         }
         el.gathered = el.radiosity;
     });
