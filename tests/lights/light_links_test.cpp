@@ -149,6 +149,15 @@ TEST(PunctualLight, ABlockerCastsItsShadow) {
     EXPECT_NEAR(floorRadiosity(engine), expected, 0.01 * expected);
 }
 
+// The floor's radiosity in a solve of pointOverFloor with the bulb at `to`.
+double solvedWithBulbAt(const TempDir& dir, double a, double h, double intensity, const glm::dvec3& to) {
+    Scene moved = pointOverFloor(dir, a, h, intensity);
+    moved.lights[0].position = to;
+    Engine fresh(std::move(moved), EngineSettings{});
+    fresh.solve();
+    return floorRadiosity(fresh);
+}
+
 // A light is moved like any object, by name: the update equals a solve of
 // the scene with the light where it ended, and dimming it to zero leaves
 // the floor dark.
@@ -159,18 +168,15 @@ TEST(PunctualLight, MovedAndDimmedLikeAnObject) {
     engine.solve();
     const glm::dvec3 to(0.4, 0.8, -0.3);
     engine.moveObjects({{"bulb", glm::translate(glm::dmat4(1.0), to)}});
-    Scene moved = pointOverFloor(dir, a, h, intensity);
-    moved.lights[0].position = to;
-    Engine fresh(std::move(moved), EngineSettings{});
-    fresh.solve();
-    EXPECT_NEAR(floorRadiosity(engine), floorRadiosity(fresh), 0.01 * floorRadiosity(fresh));
+    const double fresh = solvedWithBulbAt(dir, a, h, intensity, to);
+    EXPECT_NEAR(floorRadiosity(engine), fresh, 0.01 * fresh);
     EXPECT_GT(std::abs(floorRadiosity(engine) - kRho * intensity * squareSolidAngle(a, h) / (4.0 * a * a)),
-              0.05 * floorRadiosity(fresh));  // it did move the light
+              0.05 * fresh);  // it did move the light
 
     engine.editMaterial("bulb", glm::dvec3(0.0), std::nullopt);
     EXPECT_EQ(floorRadiosity(engine), 0.0);
     engine.editMaterial("bulb", glm::dvec3(2.0 * intensity), std::nullopt);
-    EXPECT_NEAR(floorRadiosity(engine), 2.0 * floorRadiosity(fresh), 0.01 * floorRadiosity(fresh));
+    EXPECT_NEAR(floorRadiosity(engine), 2.0 * fresh, 0.01 * fresh);
     EXPECT_THROW(engine.editMaterial("bulb", std::nullopt, glm::dvec3(0.5)), std::invalid_argument);
 }
 
@@ -188,14 +194,11 @@ TEST(PunctualLight, AMovedLightOnADeadlineIsRefinedWhenIdle) {
     past.deadlineSeconds = 0.0;
     const FrameStats moved = engine.moveObjects({{"bulb", glm::translate(glm::dmat4(1.0), to)}}, past);
     EXPECT_GT(moved.pending, 0u);
-    Scene scene = pointOverFloor(dir, a, h, intensity);
-    scene.lights[0].position = to;
-    Engine fresh(std::move(scene), EngineSettings{});
-    fresh.solve();
     FrameStats idle = engine.refinePending(past);
     for (int i = 0; i < 100 && idle.pending > 0; ++i) idle = engine.refinePending(past);
     EXPECT_EQ(idle.pending, 0u);
-    EXPECT_NEAR(floorRadiosity(engine), floorRadiosity(fresh), 0.01 * floorRadiosity(fresh));
+    const double fresh = solvedWithBulbAt(dir, a, h, intensity, to);
+    EXPECT_NEAR(floorRadiosity(engine), fresh, 0.01 * fresh);
 }
 
 // An object that moves into the light's path casts its shadow, and leaving
