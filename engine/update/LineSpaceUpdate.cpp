@@ -100,14 +100,25 @@ void LineSpaceUpdate::recordOverlay(const std::vector<ElementId>& changed, bool 
 std::size_t LineSpaceUpdate::reinstateUnneeded() {
     linkStamp_.resize(links_.slots(), 0);
     const std::size_t before = reinstated_;
-    // Top-down: a reinstated p-link takes its line-space children with it.
+    // Which p-links the criterion no longer asks for, judged on all cores
+    // (the judging is most of it: a link's judgement does not depend on
+    // what is reinstated around it).
+    std::vector<std::vector<LinkId>> unneeded(h_.size());
+    tbb::parallel_for(ElementId(0), ElementId(h_.size()), [&](ElementId e) {
+        for (LinkId pl : h_[e].plinks) {
+            const Link& l = links_[pl];
+            if (l.live && l.passive && l.receiver == e && !refiner_.wouldRefine(l)) unneeded[e].push_back(pl);
+        }
+    });
+    // Top-down: a reinstated p-link takes its line-space children with it,
+    // some of which may have been judged unneeded too.
     std::vector<ElementId> stack{h_.root()};
     while (!stack.empty()) {
         const ElementId e = stack.back();
         stack.pop_back();
-        for (LinkId pl : std::vector<LinkId>(h_[e].plinks)) {
+        for (LinkId pl : unneeded[e]) {
             const Link& l = links_[pl];
-            if (l.live && l.passive && l.receiver == e && !refiner_.wouldRefine(l)) reinstate(pl);
+            if (l.live && l.passive && l.receiver == e) reinstate(pl);
         }
         for (ElementId c : h_[e].children) stack.push_back(c);
     }
@@ -214,6 +225,7 @@ double LineSpaceUpdate::unsentPower() const {
 
 FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
+    idle_ = true;
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
@@ -239,7 +251,6 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     // What catching up changed joins what the last move changed on show.
     recordOverlay(visited, true);
     touched_.assign(visited.begin(), visited.end());
-    idle_ = true;
     bounce(std::move(visited), settings, stats);
     followTheLight(settings, stats, left());
     idle_ = false;

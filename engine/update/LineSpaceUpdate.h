@@ -225,9 +225,9 @@ private:
     static constexpr double kLeastShare = 0.1;
     // What the last bounce took, the meshing of what it changed included.
     double bounceSeconds_ = 0.0;
-    // An idle frame (refinePending) begins its first bounce whatever the
-    // clock says, so that idle time converges even on a deadline shorter
-    // than a bounce.
+    // An idle frame (refinePending) begins its first batch of refinement
+    // and its first bounce whatever the clock says, so that idle time
+    // converges even on a deadline shorter than they take.
     bool idle_ = false;
     // Elements whose change of radiosity a deadline kept from being sent
     // (bounced): the next bounce, in a later frame or idle time, sends it.
