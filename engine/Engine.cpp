@@ -171,6 +171,21 @@ struct Engine::State {
     };
     std::map<std::uint32_t, Chosen> chosen;
     std::vector<std::uint32_t> dynamicPolygonIds;
+
+    // A move deferred for lack of time (Engine::moveObjects): per object,
+    // its box and transform where its links were last updated. The frame
+    // that has time updates the links for one move from there to where the
+    // object is then; where it passed between does not matter, since no
+    // link was updated for it.
+    struct Deferred {
+        Aabb box;
+        glm::dmat4 world{1.0};
+    };
+    std::map<std::uint32_t, Deferred> deferred;
+    // What the last first traversal took: a frame on a deadline that cannot
+    // leave it that time defers its move.
+    double traversalSeconds = 0.0;
+    bool traversalMeasured = false;
 };
 
 std::size_t defaultMemoryLimit() {
@@ -462,6 +477,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     State& s = *state_;
     SolveStats& st = s.stats;
     s.meshValid = false;
+    s.deferred.clear();  // the solve is of the objects where they are
     s.refiner.linkRoot();
     // Punctual lights reach the surfaces through light links, refined once:
     // the light a point gets from them does not depend on the solution.
@@ -614,6 +630,11 @@ FrameStats Engine::moveDynamicObject(const glm::dmat4& worldFromLocal, const Upd
 
 FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dmat4>>& moves,
                                const UpdateSettings& settings) {
+    return moveObjects(moves, settings, true);
+}
+
+FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dmat4>>& moves,
+                               const UpdateSettings& settings, bool allowDeferral) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("moveObjects before solve()");
     std::vector<std::pair<std::uint32_t, glm::dmat4>> objects, lights;
@@ -657,11 +678,13 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     if (!objects.empty()) s.dynamic = objects.back().first;
 
     const auto start = std::chrono::steady_clock::now();
-    std::vector<ObjectMotion> motions;
-    std::vector<Aabb> obstacles;
+    // Where each object's links were last updated: where it starts this
+    // frame, or where a deferred move left them.
+    std::map<std::uint32_t, State::Deferred> from = s.deferred;
+    std::vector<Aabb> boxes;  // this frame's, before and after, for the light links
     for (const auto& [object, worldFromLocal] : objects) {
         const Aabb before = s.scene.objectBounds(object);
-        const glm::dmat4 oldToNew = worldFromLocal * glm::inverse(s.scene.objects[object].worldFromLocal);
+        from.emplace(object, State::Deferred{before, s.scene.objects[object].worldFromLocal});
         Object& o = s.scene.objects[object];
         const State::Chosen& c = s.chosen.at(object);
         const glm::dmat4 delta = worldFromLocal * glm::inverse(c.world);
@@ -673,8 +696,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         const ElementId cluster = s.hierarchy.objectCluster(object);
         s.hierarchy.updateGeometry(cluster);
         s.hierarchy.refreshAncestors(cluster);
-        for (const Aabb& box : motionObstacles(s.scene, object, before, oldToNew)) obstacles.push_back(box);
-        motions.push_back({before, s.scene.objectBounds(object), s.hierarchy.range(cluster)});
+        boxes.insert(boxes.end(), {before, s.scene.objectBounds(object)});
     }
     s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
     // The light links: the lights that moved are linked again everywhere;
@@ -684,9 +706,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // refine in it waits, pending, linked coarser.
     if (!s.scene.lights.empty()) {
         const auto lightDeadline = s.lightDeadline(start, settings, choosingSeconds);
-        std::vector<Aabb> boxes;
         std::vector<std::uint32_t> relinked;
-        for (const ObjectMotion& m : motions) boxes.insert(boxes.end(), {m.oldBox, m.newBox});
         for (std::uint32_t p : s.lightLinks.shadedBy(boxes)) relinked.push_back(p);
         for (const auto& [object, m] : objects) {
             const Object& o = s.scene.objects[object];
@@ -704,9 +724,40 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         }
         s.lightChanged(changed);
     }
-    s.updater.setObstacles(std::move(obstacles));
     const double moveSeconds = secondsSince(start);
+    // A deadline that cannot leave the first traversal the time it last took
+    // (and the mesh its fixed part): the move is deferred. The objects are
+    // drawn where they are, with the light of where their links were last
+    // updated, until a frame with the time (or an idle one) updates the
+    // links for one move from there. A budget-starved drag so keeps the
+    // object's links as they were, and its frames short.
+    if (allowDeferral && settings.deadlineSeconds && s.traversalMeasured &&
+        *settings.deadlineSeconds - moveSeconds - choosingSeconds - s.meshCost.model().first < s.traversalSeconds) {
+        s.deferred = std::move(from);
+        FrameStats stats;
+        stats.moveSeconds = moveSeconds;
+        stats.totalSeconds = moveSeconds + choosingSeconds;
+        stats.updateSeconds = choosingSeconds;
+        stats.deferred = s.deferred.size();
+        std::vector<ElementId> clusters;
+        for (const auto& [object, d] : s.deferred) clusters.push_back(s.hierarchy.objectCluster(object));
+        stats.estimatedError = s.updater.waitingShare() + s.updater.linkShare(clusters);
+        stats.pending = s.lightLinks.pendingCount();
+        s.buildMesh(stats);  // not a frame of the budget's fit: it has no traversal
+        return stats;
+    }
+    std::vector<ObjectMotion> motions;
+    std::vector<Aabb> obstacles;
+    for (const auto& [object, d] : from) {
+        const glm::dmat4 oldToNew = s.scene.objects[object].worldFromLocal * glm::inverse(d.world);
+        for (const Aabb& box : motionObstacles(s.scene, object, d.box, oldToNew)) obstacles.push_back(box);
+        motions.push_back({d.box, s.scene.objectBounds(object), s.hierarchy.range(s.hierarchy.objectCluster(object))});
+    }
+    s.deferred.clear();
+    s.updater.setObstacles(std::move(obstacles));
     FrameStats stats = s.updater.update(motions, s.forUpdater(settings, moveSeconds + choosingSeconds));
+    s.traversalSeconds = stats.traversalSeconds;
+    s.traversalMeasured = true;
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();
@@ -719,6 +770,16 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
 FrameStats Engine::refinePending(const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("refinePending before solve()");
+    // A deferred move first: the objects stay where they are, and their
+    // links are updated for the move from where they were last updated
+    // (its traversal is not deferred again; its link updates keep the
+    // deadline).
+    if (!s.deferred.empty()) {
+        std::vector<std::pair<std::string, glm::dmat4>> moves;
+        for (const auto& [object, d] : s.deferred)
+            moves.emplace_back(s.scene.objects[object].name, s.scene.objects[object].worldFromLocal);
+        return moveObjects(moves, settings, false);
+    }
     const auto start = std::chrono::steady_clock::now();
     // The light links a deadline left coarse first: their light then goes
     // out with the rest of what catching up changes.

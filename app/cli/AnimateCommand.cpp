@@ -69,6 +69,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
         {"pending", st.pending},
         {"stale", st.stale},
         {"unsent", st.unsent},
+        {"deferred", st.deferred},
         {"estimated_error", st.estimatedError},
         {"changed_elements", st.changedElements},
         {"bounces", st.bounces},

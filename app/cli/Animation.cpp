@@ -48,7 +48,10 @@ void addFrame(FrameStats& into, const FrameStats& more) {
     into.elements = more.elements;
     into.pending = more.pending;
     into.stale = more.stale;
-    into.estimatedError = more.estimatedError;
+    into.unsent = more.unsent;
+    // An edit after a deferred move leaves the move deferred: what it
+    // estimated stands.
+    into.estimatedError = std::max(into.estimatedError, more.estimatedError);
 }
 
 AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, const std::vector<ObjectMove>& moves,

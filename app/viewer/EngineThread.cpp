@@ -369,7 +369,7 @@ void EngineThread::run() {
         std::deque<Command> commands;
         {
             std::unique_lock lock(queueMutex_);
-            const bool behind = w.engine && w.frame.pending + w.frame.stale + w.frame.unsent > 0;
+            const bool behind = w.engine && w.frame.pending + w.frame.stale + w.frame.unsent + w.frame.deferred > 0;
             if (queue_.empty() && !behind) queueCv_.wait(lock, [&] { return !queue_.empty(); });
             commands.swap(queue_);
         }
@@ -379,10 +379,11 @@ void EngineThread::run() {
                 w.frame = w.engine->refinePending(w.update(true));
             } catch (const std::exception& e) {
                 w.selectionNote = e.what();
-                w.frame.pending = w.frame.stale = w.frame.unsent = 0;
+                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = 0;
             }
-            if (w.frame.pending + w.frame.stale >= before && w.frame.spent == 0 && w.frame.bounces == 0)
-                w.frame.pending = w.frame.stale = w.frame.unsent = 0;  // no progress: stop
+            if (w.frame.pending + w.frame.stale >= before && w.frame.spent == 0 && w.frame.bounces == 0 &&
+                w.frame.shaftTests == 0)
+                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = 0;  // no progress: stop
             publish(true);
             continue;
         }

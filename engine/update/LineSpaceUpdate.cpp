@@ -147,6 +147,11 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     stats.pending = pending_.size();
     stats.stale = stale_.size();
     stats.unsent = unsent_.size() + waiting_.size();
+    stats.estimatedError = waitingShare();
+    stats.totalSeconds = secondsSince(start);
+}
+
+double LineSpaceUpdate::waitingShare() const {
     // Active links only: a p-link's transfer is carried by its children.
     const auto waitingIn = [&](const auto& ids) {
         return tbb::parallel_reduce(
@@ -163,8 +168,22 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     const double waiting = waitingIn(pending_) + waitingIn(stale_) + unsentPower();
     const HElement& root = h_[h_.root()];
     const double power = root.area * luminance(root.radiosity);
-    stats.estimatedError = power > 0.0 ? waiting / power : 0.0;
-    stats.totalSeconds = secondsSince(start);
+    return power > 0.0 ? waiting / power : 0.0;
+}
+
+double LineSpaceUpdate::linkShare(const std::vector<ElementId>& clusters) const {
+    double sum = 0.0;
+    for (ElementId top : clusters)
+        for (std::vector<ElementId> stack{top}; !stack.empty();) {
+            const HElement& e = h_[stack.back()];
+            stack.pop_back();
+            for (LinkId id : e.links) sum += heapKey(links_[id]);
+            for (LinkId id : e.outLinks) sum += heapKey(links_[id]);
+            for (ElementId c : e.children) stack.push_back(c);
+        }
+    const HElement& root = h_[h_.root()];
+    const double power = root.area * luminance(root.radiosity);
+    return power > 0.0 ? sum / power : 0.0;
 }
 
 std::size_t LineSpaceUpdate::budgetLeft(std::size_t budget, std::size_t spent) {

@@ -91,6 +91,14 @@ public:
     };
     void setFrameTail(const FrameTail& tail) { tail_ = tail; }
 
+    // The live error estimate of what waits (stale and pending links,
+    // unsent elements), as FrameStats::estimatedError.
+    double waitingShare() const;
+    // The potential transfer of the active links with an end in the given
+    // clusters' subtrees, in the same units: what a deferred move of them
+    // could change at least (the light they send and receive).
+    double linkShare(const std::vector<ElementId>& clusters) const;
+
     // What the last frame touched, for display (paper Fig. 5 b, c): the links
     // it modified (the centres of their two H-elements) and the surface
     // elements the traversal marked changed (their outlines), as segments.

@@ -266,6 +266,38 @@ TEST(StabilityControlledUpdate, DeadlineLeavesBouncesUnsentUntilIdle) {
     EXPECT_LT(compareSamples(slow.samples(), free.samples()).rms, 0.01);
 }
 
+// A move whose deadline cannot leave the traversal the time it last took is
+// deferred: the object moves, its links wait. Two such moves, then an idle
+// frame, give what one unlimited move from the start to the end gives: the
+// links are updated once, for the whole way.
+TEST(StabilityControlledUpdate, MovesWithoutTimeForTheTraversalWaitAndCoalesce) {
+    Engine late(roomWithBlock(), coarse());
+    Engine free(roomWithBlock(), coarse());
+    ASSERT_TRUE(late.solve().converged);
+    ASSERT_TRUE(free.solve().converged);
+    UpdateSettings past;
+    past.deadlineSeconds = 0.0;
+    // The first move measures the traversal (nothing is known of it yet).
+    const FrameStats first = late.moveDynamicObject(translation(V(0.1, 0.0, 0.05)), past);
+    EXPECT_EQ(first.deferred, 0u);
+    EXPECT_GT(first.shaftTests, 0u);
+    const FrameStats second = late.moveDynamicObject(translation(V(0.25, 0.0, 0.1)), past);
+    const FrameStats third = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past);
+    for (const FrameStats& f : {second, third}) {
+        EXPECT_EQ(f.deferred, 1u);
+        EXPECT_EQ(f.shaftTests, 0u);
+        EXPECT_GT(f.estimatedError, 0.0);
+    }
+    const FrameStats idle = late.refinePending();
+    EXPECT_EQ(idle.deferred, 0u);
+    EXPECT_GT(idle.shaftTests, 0u);
+    late.refinePending();
+    free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    const CoverageResult c = checkCoverage(late, 5u, 200);
+    EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
+    EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
+}
+
 TEST(StabilityControlledUpdate, BudgetFromTargetFrameRate) {
     Engine engine(roomWithBlock(), coarse());
     ASSERT_TRUE(engine.solve().converged);

@@ -76,7 +76,11 @@ public:
     // here) stays in the dynamic visibility layer, so moving one chosen
     // before costs no new split of the layers; an object not chosen yet is
     // chosen first. Throws std::invalid_argument naming the object for an
-    // unknown one, one given twice, or a non-rigid transform.
+    // unknown one, one given twice, or a non-rigid transform. On a deadline
+    // that cannot leave the line-space traversal the time it last took, the
+    // move is deferred (FrameStats::deferred): the objects move, their links
+    // wait, and the next frame with the time, or refinePending, updates
+    // them for one move from where they were last updated.
     FrameStats moveObjects(const std::vector<std::pair<std::string, glm::dmat4>>& moves,
                            const UpdateSettings& settings = {});
 
@@ -134,6 +138,9 @@ public:
     const SolveStats& stats() const;
 
 private:
+    // allowDeferral: false when catching up a deferred move (refinePending).
+    FrameStats moveObjects(const std::vector<std::pair<std::string, glm::dmat4>>& moves,
+                           const UpdateSettings& settings, bool allowDeferral);
     struct State;
     std::unique_ptr<State> state_;
 };
