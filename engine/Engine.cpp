@@ -739,9 +739,18 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         stats.totalSeconds = moveSeconds + choosingSeconds;
         stats.updateSeconds = choosingSeconds;
         stats.deferred = s.deferred.size();
-        std::vector<ElementId> clusters;
-        for (const auto& [object, d] : s.deferred) clusters.push_back(s.hierarchy.objectCluster(object));
-        stats.estimatedError = s.updater.waitingShare() + s.updater.linkShare(clusters);
+        // The estimate: what waits already, and the light the objects' own
+        // links carry, in the share of the object's size it has moved (its
+        // shadow and its light move with it, all of them once it has moved
+        // by its size).
+        stats.estimatedError = s.updater.waitingShare();
+        for (const auto& [object, d] : s.deferred) {
+            const Aabb now = s.scene.objectBounds(object);
+            const double size = glm::length(now.hi - now.lo);
+            const double moved = glm::length(now.center() - d.box.center());
+            if (size > 0.0)
+                stats.estimatedError += std::min(1.0, moved / size) * s.updater.linkShare({s.hierarchy.objectCluster(object)});
+        }
         stats.pending = s.lightLinks.pendingCount();
         s.buildMesh(stats);  // not a frame of the budget's fit: it has no traversal
         return stats;
