@@ -277,10 +277,13 @@ TEST(StabilityControlledUpdate, MovesWithoutTimeForTheTraversalWaitAndCoalesce) 
     ASSERT_TRUE(free.solve().converged);
     UpdateSettings past;
     past.deadlineSeconds = 0.0;
-    // The first move measures the traversal (nothing is known of it yet).
-    const FrameStats first = late.moveDynamicObject(translation(V(0.1, 0.0, 0.05)), past);
-    EXPECT_EQ(first.deferred, 0u);
-    EXPECT_GT(first.shaftTests, 0u);
+    // The first two moves measure the traversal (the first runs on cold
+    // caches: one is not enough to go by).
+    for (const double x : {0.05, 0.1}) {
+        const FrameStats f = late.moveDynamicObject(translation(V(x, 0.0, x / 2.0)), past);
+        EXPECT_EQ(f.deferred, 0u);
+        EXPECT_GT(f.shaftTests, 0u);
+    }
     const FrameStats second = late.moveDynamicObject(translation(V(0.25, 0.0, 0.1)), past);
     const FrameStats third = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past);
     for (const FrameStats& f : {second, third}) {
