@@ -369,6 +369,26 @@ bool Refiner::canSplit(ElementId e) const {
 Refiner::Split Refiner::chooseSplit(const Link& link) const {
     if (link.source == link.receiver) return canSplit(link.source) ? Split::Both : Split::None;
     const bool cs = canSplit(link.source), cr = canSplit(link.receiver);
+    // A shadow boundary across one end only: split that end. The rays run
+    // from each of the source's four points to each of the receiver's four
+    // (ray 4 i + j: source point i, receiver point j). When whether a ray is
+    // blocked depends only on its source point, the blocker stands right
+    // in front of the source (a door 2 mm before a doorway's edge): splitting
+    // the receiver would leave every child link partly visible, each sending
+    // the source's mean, lit and hidden parts alike.
+    if (cs && cr && link.rays == 16 && h_[link.source].isSurface() && h_[link.receiver].isSurface()) {
+        const unsigned blocked = unsigned(link.blockedStatic | link.blockedDynamic);
+        if (blocked != 0u && blocked != 0xFFFFu) {
+            bool acrossSource = false, acrossReceiver = false;
+            for (int k = 0; k < 4; ++k) {
+                const unsigned row = (blocked >> (4 * k)) & 0xFu;       // source point k
+                const unsigned column = (blocked >> k) & 0x1111u;       // receiver point k
+                acrossReceiver = acrossReceiver || (row != 0u && row != 0xFu);
+                acrossSource = acrossSource || (column != 0u && column != 0x1111u);
+            }
+            if (acrossSource != acrossReceiver) return acrossSource ? Split::Source : Split::Receiver;
+        }
+    }
     // Equal areas (with a little slack, so a scaled scene decides alike): the receiver.
     if (cs && cr) return h_[link.source].area > h_[link.receiver].area * (1.0 + 1e-9) ? Split::Source : Split::Receiver;
     if (cs) return Split::Source;

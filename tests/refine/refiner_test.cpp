@@ -1,0 +1,99 @@
+// Which end of a link refinement splits (refine/Refiner.h): the larger one,
+// unless the link's visibility rays show a shadow boundary across one end
+// only. Then that end is split, whatever the areas: splitting the other
+// would leave every child link partly visible, each carrying the mean of
+// the lit and the hidden parts (the light through a door 2 mm in front of a
+// doorway's edge).
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "geometry/RayCaster.h"
+#include "hierarchy/Hierarchy.h"
+#include "refine/Refiner.h"
+#include "support/TestScenes.h"
+
+namespace rad {
+namespace {
+
+using V = glm::dvec3;
+
+// An axis-aligned rectangle in the plane y = `y`, facing up or down.
+std::array<V, 4> horizontal(double y, double x0, double x1, double z0, double z1, bool up) {
+    if (up) return {V(x0, y, z0), V(x0, y, z1), V(x1, y, z1), V(x1, y, z0)};
+    return {V(x0, y, z0), V(x1, y, z0), V(x1, y, z1), V(x0, y, z1)};
+}
+
+struct Split {
+    bool source = false;    // every new link's source is a child of the old source
+    bool receiver = false;  // every new link's receiver is a child of the old receiver
+    double visibility = 0.0;
+};
+
+// Refines the link from the emitter (facing down, y = 2) to the floor
+// (facing up, y = 0) once, with a black blocker in the static scene.
+Split refineOnce(const Scene& scene) {
+    Hierarchy h(scene, 1e-6);
+    LinkStore links;
+    RayCaster rays;
+    std::vector<std::uint32_t> all(scene.polygons.size());
+    for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+    rays.setLayer(Layer::Static, scene, all);
+    Refiner refiner(h, links, rays, RefineSettings{});
+    const ElementId s = h.polygonElement(0), r = h.polygonElement(1);
+    const LinkId id = refiner.attach(refiner.compute(s, r));
+    Split out;
+    out.visibility = links[id].visibility();
+    std::vector<LinkId> created;
+    refiner.refine({id}, created);
+    EXPECT_FALSE(created.empty());
+    out.source = out.receiver = !created.empty();
+    for (LinkId c : created) {
+        out.source = out.source && links[c].receiver == r && h[links[c].source].parent == s;
+        out.receiver = out.receiver && links[c].source == s && h[links[c].receiver].parent == r;
+    }
+    return out;
+}
+
+Scene emitterFloorBlocker(double emitterSide, double floorSide, const std::array<V, 4>& blocker) {
+    Scene s;
+    s.sourcePath = "split";
+    const auto light = test::addMaterial(s, V(0.0), V(1.0), "light");
+    const auto grey = test::addMaterial(s, V(0.5), V(0.0), "grey");
+    const auto black = test::addMaterial(s, V(0.0), V(0.0), "black");
+    test::addQuadObject(s, "emitter", light, {horizontal(2.0, 0.0, emitterSide, 0.0, emitterSide, false)});
+    test::addQuadObject(s, "floor", grey, {horizontal(0.0, 0.0, floorSide, 0.0, floorSide, true)});
+    test::addQuadObject(s, "blocker", black, {blocker});
+    return s;
+}
+
+// A small emitter half covered by a blocker 1 cm below it: whether a ray is
+// blocked depends on its emitter point only. The floor is 25 times larger,
+// yet the emitter is split.
+TEST(Refiner, SplitsTheSourceWhenTheShadowBoundaryCrossesIt) {
+    const Split split = refineOnce(emitterFloorBlocker(1.0, 5.0, horizontal(1.99, -1.0, 0.5, -1.0, 2.0, true)));
+    EXPECT_GT(split.visibility, 0.0);
+    EXPECT_LT(split.visibility, 1.0);
+    EXPECT_TRUE(split.source);
+}
+
+// A small floor half covered by a blocker 1 cm above it, under a large
+// emitter: the boundary crosses the receiver, which is split although it is
+// the smaller end.
+TEST(Refiner, SplitsTheReceiverWhenTheShadowBoundaryCrossesIt) {
+    const Split split = refineOnce(emitterFloorBlocker(5.0, 1.0, horizontal(0.01, -1.0, 0.5, -1.0, 2.0, false)));
+    EXPECT_GT(split.visibility, 0.0);
+    EXPECT_LT(split.visibility, 1.0);
+    EXPECT_TRUE(split.receiver);
+}
+
+// No boundary that one end alone carries (nothing blocks): the larger end.
+TEST(Refiner, SplitsTheLargerEndOtherwise) {
+    const Split split = refineOnce(emitterFloorBlocker(1.0, 5.0, horizontal(5.0, 10.0, 11.0, 10.0, 11.0, true)));
+    EXPECT_EQ(split.visibility, 1.0);
+    EXPECT_TRUE(split.receiver);
+}
+
+}  // namespace
+}  // namespace rad
