@@ -894,7 +894,7 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
                 const ElementId el = stack.back();
                 stack.pop_back();
                 s.hierarchy[el].emission = m.emission;
-                s.hierarchy[el].reflectance = m.reflectance;
+                s.hierarchy[el].reflectance = surfaceReflectance(s.scene, p, s.hierarchy[el].param);
                 for (ElementId c : s.hierarchy[el].children) stack.push_back(c);
             }
         }

@@ -29,6 +29,7 @@ import math
 import os
 import struct
 import sys
+import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -308,12 +309,21 @@ class SceneBuilder:
         self.rooms = []  # (object name, interior reference point) for --check
         self.outward = []  # (object name, part centre) for closed parts checked outward
         self.lights = []  # KHR_lights_punctual: dicts (name, type, color, intensity, position, [aim, cones])
+        self.textures = {}  # material name -> (width, height, texels (rows from the top, sRGB bytes), metres a repeat)
 
     def material(self, name, rgb, emission=None):
         """emission: (r, g, b) radiometric emission E; split into factor * strength."""
         assert all(0.0 <= c < 1.0 for c in rgb), name
         self.materials[name] = (rgb, emission)
         return name
+
+    def texture(self, material, width, height, texels, repeat):
+        """A base colour texture for `material` (whose rgb is then the baseColorFactor): texels
+        are (r, g, b) sRGB bytes, rows from the top; laid on every polygon by planar projection
+        along its normal's largest axis, one repeat every `repeat` metres."""
+        assert len(texels) == width * height, material
+        self.textures[material] = (width, height, texels, repeat)
+        return material
 
     def obj(self, name, dynamic=False, extras=None):
         assert all(o.name != name for o in self.objects), name
@@ -390,6 +400,26 @@ def validate_polygon(poly, where, magnitude=0.0):
         assert turn > 1e-9 * max(1.0, size * size), '%s: non-convex polygon %r' % (where, poly)
 
 
+def png_bytes(width, height, texels):
+    """An 8-bit RGB PNG (deflated with zlib)."""
+    def chunk(kind, data):
+        return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data) & 0xffffffff)
+    raw = b''.join(b'\x00' + bytes(c for t in texels[y * width:(y + 1) * width] for c in t) for y in range(height))
+    return (b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', width, height, 8, 2, 0, 0, 0)) +
+            chunk(b'IDAT', zlib.compress(raw, 9)) + chunk(b'IEND', b''))
+
+
+def planar_uv(poly, p, repeat):
+    """Texture coordinates of point p of poly, in repeats: along x and z on a floor or a
+    ceiling, along the wall and downward (images run top to bottom) on a wall."""
+    n = newell(poly)
+    axis = max(range(3), key=lambda i: abs(n[i]))
+    if axis == 1:
+        return (p[0] / repeat, p[2] / repeat)
+    along = p[2] if axis == 0 else p[0]
+    return (along / repeat, -p[1] / repeat)
+
+
 def build_gltf(sb):
     buf = bytearray()
     views, accessors, meshes, nodes = [], [], [], []
@@ -409,6 +439,14 @@ def build_gltf(sb):
                 md['extensions'] = {'KHR_materials_emissive_strength': {'emissiveStrength': s}}
                 uses_strength = True
         materials.append(md)
+    images, textures = [], []
+    for m in mat_names:
+        if m in sb.textures:
+            w, h, texels, _ = sb.textures[m]
+            images.append({'name': m, 'mimeType': 'image/png',
+                           'uri': 'data:image/png;base64,' + base64.b64encode(png_bytes(w, h, texels)).decode('ascii')})
+            textures.append({'source': len(images) - 1, 'sampler': 0})
+            materials[mat_index[m]]['pbrMetallicRoughness']['baseColorTexture'] = {'index': len(textures) - 1}
 
     def align():
         while len(buf) % 4:
@@ -417,16 +455,19 @@ def build_gltf(sb):
     for o in sb.objects:
         prims = []
         for mat, polys in o.parts:
-            verts, vindex, idx = [], {}, []
+            verts, vindex, idx, uvs = [], {}, [], []
+            repeat = sb.textures[mat][3] if mat in sb.textures else None
             for pi, poly in enumerate(polys):
                 validate_polygon(poly, '%s/%s #%d' % (sb.name, o.name, pi))
                 ids = []
                 for p in poly:
                     key = (f32(p[0]), f32(p[1]), f32(p[2]))
-                    if key not in vindex:
-                        vindex[key] = len(verts)
+                    uv = tuple(f32(c) for c in planar_uv(poly, p, repeat)) if repeat else None
+                    if (key, uv) not in vindex:
+                        vindex[(key, uv)] = len(verts)
                         verts.append(key)
-                    ids.append(vindex[key])
+                        uvs.append(uv)
+                    ids.append(vindex[(key, uv)])
                 assert len(set(ids)) == len(ids), '%s/%s: vertices merged by float32' % (sb.name, o.name)
                 idx += ids[:3]
                 if len(ids) == 4:
@@ -451,7 +492,16 @@ def build_gltf(sb):
                 ct = 5125
             views.append({'buffer': 0, 'byteOffset': off, 'byteLength': len(buf) - off, 'target': 34963})
             accessors.append({'bufferView': len(views) - 1, 'componentType': ct, 'count': len(idx), 'type': 'SCALAR'})
-            prims.append({'attributes': {'POSITION': pos_acc}, 'indices': len(accessors) - 1,
+            attributes = {'POSITION': pos_acc}
+            if repeat:
+                align()
+                off = len(buf)
+                for uv in uvs:
+                    buf += struct.pack('<2f', *uv)
+                views.append({'buffer': 0, 'byteOffset': off, 'byteLength': len(buf) - off, 'target': 34962})
+                accessors.append({'bufferView': len(views) - 1, 'componentType': 5126, 'count': len(uvs), 'type': 'VEC2'})
+                attributes['TEXCOORD_0'] = len(accessors) - 1
+            prims.append({'attributes': attributes, 'indices': len(accessors) - 2 if repeat else len(accessors) - 1,
                           'material': mat_index[mat], 'mode': 4})
         meshes.append({'name': o.name, 'primitives': prims})
         node = {'name': o.name, 'mesh': len(meshes) - 1}
@@ -497,6 +547,10 @@ def build_gltf(sb):
     if cams:
         gl['cameras'] = cams
     gl['materials'] = materials
+    if textures:
+        gl['images'] = images
+        gl['textures'] = textures
+        gl['samplers'] = [{'magFilter': 9729, 'minFilter': 9729, 'wrapS': 10497, 'wrapT': 10497}]
     gl['accessors'] = accessors
     gl['bufferViews'] = views
     gl['buffers'] = [{'byteLength': len(buf),
@@ -985,6 +1039,31 @@ def lamp_room():
     return sb
 
 
+def textured_room():
+    """The furnished room with base colour textures, as modelling tools write them (a texture
+    per material, TEXCOORD_0): a checkered floor of 0.75 m tiles and a striped hanging on the
+    wall. Each element reflects the texels under it, and the viewer draws the texels."""
+    sb = SceneBuilder('textured-room')
+    mats = office_materials(sb)
+    light_tile, dark_tile = (205, 195, 175), (70, 58, 50)
+    floor = sb.texture(sb.material('checker-floor', (0.9, 0.9, 0.9)), 2, 2,
+                       [light_tile, dark_tile, dark_tile, light_tile], 2 * FURNISHED_ROOM_TILE)
+    stripes = [(190, 40, 35), (235, 190, 60), (40, 90, 170), (230, 225, 215)]
+    hanging = sb.texture(sb.material('hanging', (0.9, 0.9, 0.9)), 8, 2,
+                         [stripes[(x // 2) % 4] for _ in range(2) for x in range(8)], 1.2)
+    rng = Rng(612)
+    room(sb, '', (0.0, 0.0, 0.0), (6.0, 3.0, 5.0), FURNISHED_ROOM_TILE, (mats['wall'], floor, mats['ceiling']),
+         lights=[(1.4, 2.6, 1.3, 1.9)], light_mat=mats['light'])
+    add_desk(sb, 'desk', 1.6, 0.46, 0.0, mats)
+    add_chair(sb, 'chair', 1.7, 1.4, math.pi + 0.25, mats, dynamic=True)
+    add_bookcase(sb, 'bookcase', 0.19, 2.6, 0.5 * math.pi, mats, rng)
+    # 2 cm off the wall x = 0, facing into the room.
+    panel = [(0.02, 1.0, 0.8), (0.02, 1.0, 2.0), (0.02, 2.2, 2.0), (0.02, 2.2, 0.8)]
+    sb.obj('hanging').add(hanging, [facing(panel, (1.0, 1.6, 1.4), outward=False)])
+    sb.set_camera((5.6, 1.6, 4.6), (1.9, 1.15, 1.0), math.radians(50.0), 4.0 / 3.0)
+    return sb
+
+
 def building_floor(rooms_per_side=30):
     """A floor of a building at the scale users bring (about 100k polygons): a corridor with
     furnished rooms on both sides. Each room is closed but for its doorway onto the corridor (its
@@ -1259,7 +1338,8 @@ def check_scene(sb, path, expected_bytes):
 # ---------------------------------------------------------------------------
 
 SCENES = [('cornell-box', cornell), ('office', office), ('two-offices', two_offices), ('dark-room', dark_room),
-          ('furnished-room', furnished_room), ('lamp-room', lamp_room), ('building-floor', building_floor)]
+          ('furnished-room', furnished_room), ('lamp-room', lamp_room), ('textured-room', textured_room),
+          ('building-floor', building_floor)]
 
 
 def main(argv=None):

@@ -1,8 +1,11 @@
 #include "hierarchy/Hierarchy.h"
 
+#include "radiosity/Gltf.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace rad {
@@ -55,6 +58,48 @@ glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv) {
     const glm::dvec3 a = glm::mix(p.vertices[0], p.vertices[1], uv.x);
     const glm::dvec3 b = glm::mix(p.vertices[3], p.vertices[2], uv.x);
     return glm::mix(a, b, uv.y);
+}
+
+glm::dvec2 polygonTexCoord(const Polygon& p, const glm::dvec2& uv) {
+    const auto t = [&](int k) { return glm::dvec2(p.uv[k]); };
+    if (p.vertexCount == 3) return t(0) + uv.x * (t(1) - t(0)) + uv.y * (t(2) - t(0));
+    return glm::mix(glm::mix(t(0), t(1), uv.x), glm::mix(t(3), t(2), uv.x), uv.y);
+}
+
+glm::dvec3 surfaceReflectance(const Scene& scene, std::uint32_t polygon, const std::array<glm::dvec2, 4>& param) {
+    const Polygon& p = scene.polygons[polygon];
+    const Material& m = scene.materials[p.material];
+    if (m.texture < 0 || static_cast<std::size_t>(m.texture) >= scene.textures.size() || !scene.textures[m.texture])
+        return m.reflectance;
+    const Texture& texture = *scene.textures[m.texture];
+    // The element's corners in texture space, for how many texels it covers.
+    std::array<glm::dvec2, 4> corners{};
+    for (int k = 0; k < p.vertexCount; ++k) corners[k] = polygonTexCoord(p, param[k]);
+    const glm::dvec2 e1 = corners[1] - corners[0], e2 = corners[p.vertexCount - 1] - corners[0];
+    const double texels = std::abs(e1.x * e2.y - e1.y * e2.x) * texture.width * texture.height;
+    // A grid of samples, about one per texel (2 x 2 to 16 x 16), each the
+    // texel it falls on: the mean of the texels under the element.
+    const int n = std::clamp(static_cast<int>(std::ceil(std::sqrt(texels))), 2, 16);
+    glm::dvec3 sum(0.0);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            double s = (i + 0.5) / n, t = (j + 0.5) / n;
+            glm::dvec2 at;
+            if (p.vertexCount == 3) {
+                // Folded onto the triangle: cell centres above the diagonal
+                // fall on cell centres below it.
+                if (s + t > 1.0) s = 1.0 - s, t = 1.0 - t;
+                at = param[0] + s * (param[1] - param[0]) + t * (param[2] - param[0]);
+            } else {
+                at = glm::mix(glm::mix(param[0], param[1], s), glm::mix(param[3], param[2], s), t);
+            }
+            sum += texture.texel(polygonTexCoord(p, at));
+        }
+    const glm::dvec3 local = sum / double(n * n);
+    glm::dvec3 rho(0.0);
+    for (int c = 0; c < 3; ++c)
+        rho[c] = m.textureMean[c] > 0.0 ? std::min(m.reflectance[c] * local[c] / m.textureMean[c], kMaxReflectance) : 0.0;
+    return rho;
 }
 
 const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount) {
@@ -182,7 +227,7 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
     ElementBounds bounds;
     for (int i = 0; i < p.vertexCount; ++i) bounds.box.extend(p.vertices[i]);
     const Material& m = scene.materials[p.material];
-    e.reflectance = m.reflectance;
+    e.reflectance = surfaceReflectance(scene, polygon, e.param);
     e.emission = m.emission;
     const ElementId id = add(std::move(e), bounds);
     polygonElements_[polygon] = id;
@@ -377,7 +422,7 @@ void Hierarchy::subdivide(ElementId id) {
         c.param = params[k];
         c.patch.n = parent.patch.n;
         c.normal = parent.normal;
-        c.reflectance = parent.reflectance;
+        c.reflectance = surfaceReflectance(scene_, parent.polygon, params[k]);
         c.emission = parent.emission;
         c.radiosity = parent.radiosity;
         c.peak = luminance(parent.radiosity);

@@ -17,6 +17,13 @@ namespace rad {
 // The point with parametric coordinates uv on a polygon (as in HElement::param:
 // bilinear on a quad, barycentric-like on a triangle).
 glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv);
+// The texture coordinates at parametric uv (the same interpolation).
+glm::dvec2 polygonTexCoord(const Polygon& p, const glm::dvec2& uv);
+// The reflectance of the part of a polygon with the given parametric corners
+// (HElement::param): its material's, or with a base colour texture, that
+// scaled by the mean of the texels under the part over the texture's mean
+// (each channel at most kMaxReflectance).
+glm::dvec3 surfaceReflectance(const Scene& scene, std::uint32_t polygon, const std::array<glm::dvec2, 4>& param);
 // 16 fixed parametric points spread evenly over a polygon: a 4 x 4 grid of
 // cell centres on quads, the centroids of the 16 sub-triangles of a 4-level
 // split on triangles.

@@ -26,6 +26,7 @@ namespace {
 struct WorldTriangle {
     std::array<glm::dvec3, 3> v;
     std::uint32_t material = 0;
+    std::array<glm::vec2, 3> uv{};  // texture coordinates (zero when untextured)
 };
 
 struct PendingObject {
@@ -84,10 +85,6 @@ const char* modeName(int mode) {
     }
 }
 
-double srgbToLinear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
 bool allFinite(const std::vector<double>& values) {
     return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
 }
@@ -122,10 +119,33 @@ bool strictlyConvex(const std::array<glm::dvec3, 4>& q, const glm::dvec3& n) {
     return true;
 }
 
+// Whether the texture coordinates of the quad q are one affine map of its
+// positions (those of its first three corners predict the fourth): a quad's
+// points and coordinates are both bilinear in its parameters, so the texture
+// then lies on the merged quad as it lay on the two triangles.
+bool affineTexture(const std::array<glm::dvec3, 4>& q, const std::array<glm::vec2, 4>& uv) {
+    const glm::dvec3 e1 = q[1] - q[0], e2 = q[3] - q[0], d = q[2] - q[0];
+    // d in the basis e1, e2 (least squares; the four are coplanar).
+    const double a11 = glm::dot(e1, e1), a12 = glm::dot(e1, e2), a22 = glm::dot(e2, e2);
+    const double det = a11 * a22 - a12 * a12;
+    if (!(det > 0.0)) return false;
+    const double b1 = glm::dot(d, e1), b2 = glm::dot(d, e2);
+    const double s = (b1 * a22 - b2 * a12) / det, t = (a11 * b2 - a12 * b1) / det;
+    const glm::dvec2 predicted = glm::dvec2(uv[0]) + s * glm::dvec2(uv[1] - uv[0]) + t * glm::dvec2(uv[3] - uv[0]);
+    const double scale = std::max({1.0, glm::length(glm::dvec2(uv[1] - uv[0])), glm::length(glm::dvec2(uv[3] - uv[0]))});
+    return glm::length(predicted - glm::dvec2(uv[2])) <= 1e-4 * scale;
+}
+
+struct MergedQuad {
+    std::array<glm::dvec3, 4> v;
+    std::array<glm::vec2, 4> uv;
+};
+
 // The quad made of a and b when they share an edge (in opposite directions,
-// as consistent winding requires), lie in one plane and form a convex union.
-std::optional<std::array<glm::dvec3, 4>> mergeToQuad(const WorldTriangle& a,
-                                                     const WorldTriangle& b) {
+// as consistent winding requires), lie in one plane and form a convex union;
+// with a texture, only when the shared edge has the same coordinates in both
+// and the coordinates are affine over the quad.
+std::optional<MergedQuad> mergeToQuad(const WorldTriangle& a, const WorldTriangle& b, bool textured) {
     if (a.material != b.material) return std::nullopt;
     const glm::dvec3 na = triangleNormal(a);
     const glm::dvec3 nb = triangleNormal(b);
@@ -138,8 +158,11 @@ std::optional<std::array<glm::dvec3, 4>> mergeToQuad(const WorldTriangle& a,
             // b runs q -> p where a runs p -> q.
             if (b.v[j] != q || b.v[(j + 1) % 3] != p) continue;
             const std::array<glm::dvec3, 4> quad = {q, a.v[(k + 2) % 3], p, b.v[(j + 2) % 3]};
-            if (strictlyConvex(quad, na)) return quad;
-            return std::nullopt;
+            const std::array<glm::vec2, 4> uv = {a.uv[(k + 1) % 3], a.uv[(k + 2) % 3], a.uv[k], b.uv[(j + 2) % 3]};
+            if (!strictlyConvex(quad, na)) return std::nullopt;
+            if (textured && (b.uv[j] != a.uv[(k + 1) % 3] || b.uv[(j + 1) % 3] != a.uv[k] || !affineTexture(quad, uv)))
+                return std::nullopt;
+            return MergedQuad{quad, uv};
         }
     }
     return std::nullopt;
@@ -166,7 +189,9 @@ struct MergedRegion {
 // half a square has 0.25, an equilateral triangle 0.43).
 constexpr double kSliverShape = 0.05;
 
-std::vector<MergedRegion> mergeCoplanarRegions(std::vector<WorldTriangle>& tris) {
+// Textured materials keep their triangles: a merged outline has no texture
+// coordinates that would lay the texture as the triangles did.
+std::vector<MergedRegion> mergeCoplanarRegions(std::vector<WorldTriangle>& tris, const std::vector<Material>& materials) {
     const std::size_t n = tris.size();
     std::map<std::array<double, 3>, std::uint32_t> ids;
     std::vector<std::array<std::uint32_t, 3>> vid(n);
@@ -190,7 +215,8 @@ std::vector<MergedRegion> mergeCoplanarRegions(std::vector<WorldTriangle>& tris)
     for (std::size_t t = 0; t < n; ++t) normal[t] = triangleNormal(tris[t]);
     // Positions come as float32: normals within 1e-4 rad are one plane's.
     const auto joins = [&](std::uint32_t t, std::uint32_t u) {
-        return tris[t].material == tris[u].material && glm::length(normal[t] - normal[u]) <= 1e-4;
+        return tris[t].material == tris[u].material && materials[tris[t].material].texture < 0 &&
+               glm::length(normal[t] - normal[u]) <= 1e-4;
     };
     for (std::uint32_t t = 0; t < n; ++t)
         for (int k = 0; k < 3; ++k) {
@@ -646,6 +672,68 @@ class Importer {
         return out;
     }
 
+    // TEXCOORD_set, one per vertex (FLOAT, or normalised UNSIGNED_BYTE or
+    // UNSIGNED_SHORT as glTF allows); empty when the primitive has none.
+    std::vector<glm::vec2> readTexCoords(const tinygltf::Primitive& prim, int set, std::size_t vertices,
+                                         const std::string& item) const {
+        const std::string name = "TEXCOORD_" + std::to_string(set);
+        const auto it = prim.attributes.find(name);
+        if (it == prim.attributes.end()) return {};
+        const int index = it->second;
+        if (index < 0 || index >= static_cast<int>(model_.accessors.size()))
+            fail(item, name + " accessor " + std::to_string(index) + " does not exist");
+        const tinygltf::Accessor& acc = model_.accessors[index];
+        std::size_t size = 0;
+        double scale = 1.0;
+        switch (acc.componentType) {
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: size = 4; break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: size = 1; scale = 1.0 / 255.0; break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: size = 2; scale = 1.0 / 65535.0; break;
+            default: fail(item + " " + name + " accessor " + std::to_string(index), "component type must be FLOAT, UNSIGNED_BYTE or UNSIGNED_SHORT");
+        }
+        if (size != 4 && !acc.normalized)
+            fail(item + " " + name + " accessor " + std::to_string(index), "integer texture coordinates must be normalized");
+        const AccessorView view = viewAccessor(index, item + " " + name, TINYGLTF_TYPE_VEC2, size);
+        if (view.count != vertices)
+            fail(item, name + " has " + std::to_string(view.count) + " elements for " + std::to_string(vertices) + " vertices");
+        std::vector<glm::vec2> out(view.count);
+        for (std::size_t i = 0; i < view.count; ++i) {
+            double uv[2];
+            for (int c = 0; c < 2; ++c) {
+                const unsigned char* at = view.element(i) + c * size;
+                if (size == 4) {
+                    float f;
+                    std::memcpy(&f, at, 4);
+                    uv[c] = f;
+                } else if (size == 2) {
+                    std::uint16_t v;
+                    std::memcpy(&v, at, 2);
+                    uv[c] = v * scale;
+                } else {
+                    uv[c] = *at * scale;
+                }
+            }
+            if (!std::isfinite(uv[0]) || !std::isfinite(uv[1])) fail(item, name + " " + std::to_string(i) + " is NaN or Inf");
+            out[i] = glm::vec2(float(uv[0]), float(uv[1]));
+        }
+        return out;
+    }
+
+    // The same material without its texture (reflectance its mean), for
+    // primitives that give no texture coordinates.
+    std::uint32_t untexturedCopy(std::uint32_t material) {
+        const auto found = untextured_.find(material);
+        if (found != untextured_.end()) return found->second;
+        Material m = materials_[material];
+        m.texture = -1;
+        m.textureMean = glm::dvec3(1.0);
+        const auto index = static_cast<std::uint32_t>(materials_.size());
+        materials_.push_back(m);
+        if (doubleSided_.count(material)) doubleSided_.insert(index);
+        untextured_[material] = index;
+        return index;
+    }
+
     std::vector<std::uint32_t> readIndices(int accessorIndex, const std::string& item) const {
         if (accessorIndex >= static_cast<int>(model_.accessors.size()))
             fail(item, "indices accessor " + std::to_string(accessorIndex) + " does not exist");
@@ -690,8 +778,17 @@ class Importer {
             fail(item, std::string("mode ") + modeName(prim.mode) + " (" +
                            std::to_string(prim.mode) + ") is not supported, only TRIANGLES");
         if (!prim.targets.empty()) note(item + ": morph targets ignored");
-        const std::uint32_t material = materialIndex(prim.material, item);
+        std::uint32_t material = materialIndex(prim.material, item);
         const std::vector<glm::dvec3> local = readPositions(prim, item);
+        std::vector<glm::vec2> uv;
+        if (materials_[material].texture >= 0) {
+            const int set = model_.materials[prim.material].pbrMetallicRoughness.baseColorTexture.texCoord;
+            uv = readTexCoords(prim, set, local.size(), item);
+            if (uv.empty()) {
+                note(item + ": no TEXCOORD_" + std::to_string(set) + " for its base colour texture; the texture counts as its mean");
+                material = untexturedCopy(material);
+            }
+        }
         std::vector<std::uint32_t> indices;
         if (prim.indices >= 0) {
             indices = readIndices(prim.indices, item);
@@ -716,8 +813,12 @@ class Importer {
                     fail(item, "index " + std::to_string(idx) + " is out of range (" +
                                    std::to_string(worldPos.size()) + " vertices)");
                 tri.v[k] = worldPos[idx];
+                if (!uv.empty()) tri.uv[k] = uv[idx];
             }
-            if (mirrored) std::swap(tri.v[1], tri.v[2]);
+            if (mirrored) {
+                std::swap(tri.v[1], tri.v[2]);
+                std::swap(tri.uv[1], tri.uv[2]);
+            }
             out.push_back(tri);
         }
     }
@@ -751,7 +852,13 @@ class Importer {
         if (pbr.baseColorFactor.size() < 3 || !allFinite(pbr.baseColorFactor))
             fail(item, "baseColorFactor is missing numbers or contains NaN or Inf");
         glm::dvec3 rho(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]);
-        if (pbr.baseColorTexture.index >= 0) rho *= textureMean(pbr.baseColorTexture.index, item);
+        if (pbr.baseColorTexture.index >= 0) {
+            if (const std::optional<std::uint32_t> t = texture(pbr.baseColorTexture.index, item)) {
+                out.texture = static_cast<std::int32_t>(*t);
+                out.textureMean = textures_[*t]->mean();
+                rho *= out.textureMean;
+            }
+        }
         for (int c = 0; c < 3; ++c) {
             if (!(rho[c] >= 0.0 && rho[c] <= 1.0)) {
                 std::ostringstream s;
@@ -804,55 +911,62 @@ class Importer {
         }
     }
 
-    // Mean texel colour in linear space: texels are sRGB-encoded, and the
-    // average of light must be taken after decoding.
-    glm::dvec3 textureMean(int textureIndex, const std::string& item) {
+    // The scene texture of a glTF texture: its image as sRGB RGBA8 (16-bit
+    // channels rounded, grey repeated into r, g and b) and its sampler's
+    // wrap modes. Empty, with a note, when it has no decodable image.
+    std::optional<std::uint32_t> texture(int textureIndex, const std::string& item) {
         if (textureIndex >= static_cast<int>(model_.textures.size()))
             fail(item, "baseColorTexture " + std::to_string(textureIndex) + " does not exist");
-        const int source = model_.textures[textureIndex].source;
-        if (source < 0 || source >= static_cast<int>(model_.images.size())) {
-            note(item + ": baseColorTexture has no usable image, ignored");
-            return glm::dvec3(1.0);
-        }
-        const auto cached = textureMeans_.find(source);
-        if (cached != textureMeans_.end()) return cached->second;
-        const tinygltf::Image& img = model_.images[source];
-        glm::dvec3 mean(1.0);
-        const std::size_t bytesPerChannel = img.bits == 16 ? 2 : 1;
-        const std::size_t texels =
-            img.width > 0 && img.height > 0
-                ? static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height)
-                : 0;
-        if (texels == 0 || img.component < 1 || (img.bits != 8 && img.bits != 16) ||
-            img.image.size() < texels * img.component * bytesPerChannel) {
-            note(item + ": baseColorTexture image could not be decoded, ignored");
+        const auto cached = textureMap_.find(textureIndex);
+        if (cached != textureMap_.end()) return cached->second;
+        const tinygltf::Texture& t = model_.textures[textureIndex];
+        std::optional<std::uint32_t> result;
+        const int source = t.source;
+        const tinygltf::Image* img = source >= 0 && source < static_cast<int>(model_.images.size()) ? &model_.images[source] : nullptr;
+        const std::size_t bytesPerChannel = img && img->bits == 16 ? 2 : 1;
+        const std::size_t texels = img && img->width > 0 && img->height > 0
+                                       ? static_cast<std::size_t>(img->width) * static_cast<std::size_t>(img->height)
+                                       : 0;
+        if (!img || texels == 0 || img->component < 1 || (img->bits != 8 && img->bits != 16) ||
+            img->image.size() < texels * img->component * bytesPerChannel) {
+            note(item + ": baseColorTexture has no image that could be decoded, ignored");
         } else {
-            mean = meanLinear(img, texels, bytesPerChannel);
-        }
-        textureMeans_[source] = mean;
-        return mean;
-    }
-
-    static glm::dvec3 meanLinear(const tinygltf::Image& img, std::size_t texels,
-                                 std::size_t bytesPerChannel) {
-        const double maxValue = bytesPerChannel == 2 ? 65535.0 : 255.0;
-        const auto channel = [&](std::size_t texel, int c) {
-            const std::size_t offset = (texel * img.component + c) * bytesPerChannel;
-            std::uint32_t v = img.image[offset];
-            if (bytesPerChannel == 2) {
-                std::uint16_t v16;
-                std::memcpy(&v16, &img.image[offset], 2);
-                v = v16;
+            auto out = std::make_shared<Texture>();
+            out->name = img->name.empty() ? (img->uri.empty() ? "image" + std::to_string(source) : img->uri) : img->name;
+            out->width = static_cast<std::uint32_t>(img->width);
+            out->height = static_cast<std::uint32_t>(img->height);
+            out->srgba.resize(texels * 4);
+            for (std::size_t i = 0; i < texels; ++i)
+                for (int c = 0; c < 4; ++c) {
+                    // Grey images (1 or 2 components) use channel 0 for r, g and b; alpha is not used.
+                    const int from = c == 3 ? -1 : img->component < 3 ? 0 : c;
+                    std::uint32_t v = 255;
+                    if (from >= 0) {
+                        const std::size_t offset = (i * img->component + from) * bytesPerChannel;
+                        if (bytesPerChannel == 2) {
+                            std::uint16_t v16;
+                            std::memcpy(&v16, &img->image[offset], 2);
+                            v = (v16 + 128u) / 257u;
+                        } else {
+                            v = img->image[offset];
+                        }
+                    }
+                    out->srgba[i * 4 + c] = static_cast<std::uint8_t>(v);
+                }
+            if (t.sampler >= 0 && t.sampler < static_cast<int>(model_.samplers.size())) {
+                const auto wrap = [](int mode) {
+                    return mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? Texture::Wrap::Clamp
+                           : mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? Texture::Wrap::Mirror
+                                                                           : Texture::Wrap::Repeat;
+                };
+                out->wrapU = wrap(model_.samplers[t.sampler].wrapS);
+                out->wrapV = wrap(model_.samplers[t.sampler].wrapT);
             }
-            return srgbToLinear(v / maxValue);
-        };
-        glm::dvec3 sum(0.0);
-        for (std::size_t t = 0; t < texels; ++t) {
-            // Grey images (1 or 2 components) use channel 0 for r, g and b.
-            const bool grey = img.component < 3;
-            sum += glm::dvec3(channel(t, 0), channel(t, grey ? 0 : 1), channel(t, grey ? 0 : 2));
+            result = static_cast<std::uint32_t>(textures_.size());
+            textures_.push_back(std::move(out));
         }
-        return sum / static_cast<double>(texels);
+        textureMap_[textureIndex] = result;
+        return result;
     }
 
     // Drops degenerate triangles, merges quads, drops duplicate polygons and
@@ -891,6 +1005,7 @@ class Importer {
 
         Scene scene;
         scene.materials = std::move(materials_);
+        scene.textures = std::move(textures_);
         scene.camera = camera_;
         scene.lights = std::move(lights_);
         for (std::size_t i = 0; i < pending_.size(); ++i) {
@@ -1017,12 +1132,13 @@ class Importer {
                 // same vertices in reverse order (a zero-thickness slab,
                 // which visibility separates), lit and drawn from its side.
                 std::reverse(p.vertices.begin(), p.vertices.begin() + p.vertexCount);
+                std::reverse(p.uv.begin(), p.uv.begin() + p.vertexCount);
                 out.push_back(p);
                 ++backFaces_;
             }
         };
         const std::size_t before = tris.size();
-        for (const MergedRegion& r : mergeCoplanarRegions(tris)) {
+        for (const MergedRegion& r : mergeCoplanarRegions(tris, materials_)) {
             Polygon p;
             p.material = r.material;
             p.object = object;
@@ -1035,16 +1151,19 @@ class Importer {
             Polygon p;
             p.material = tris[i].material;
             p.object = object;
-            const auto quad =
-                i + 1 < tris.size() ? mergeToQuad(tris[i], tris[i + 1]) : std::nullopt;
+            const auto quad = i + 1 < tris.size()
+                                  ? mergeToQuad(tris[i], tris[i + 1], materials_[tris[i].material].texture >= 0)
+                                  : std::nullopt;
             if (quad) {
                 p.vertexCount = 4;
-                p.vertices = *quad;
+                p.vertices = quad->v;
+                p.uv = quad->uv;
                 ++notes_.mergedQuads;
                 i += 2;
             } else {
                 p.vertexCount = 3;
                 p.vertices = {tris[i].v[0], tris[i].v[1], tris[i].v[2], glm::dvec3(0.0)};
+                p.uv = {tris[i].uv[0], tris[i].uv[1], tris[i].uv[2], glm::vec2(0.0f)};
                 i += 1;
             }
             emit(p);
@@ -1062,7 +1181,9 @@ class Importer {
     std::optional<std::uint32_t> defaultMaterial_;
     std::set<std::uint32_t> doubleSided_;  // scene material indices
     std::size_t backFaces_ = 0;
-    std::map<int, glm::dvec3> textureMeans_;
+    std::map<int, std::optional<std::uint32_t>> textureMap_;  // glTF texture -> Scene::textures
+    std::vector<std::shared_ptr<const Texture>> textures_;
+    std::map<std::uint32_t, std::uint32_t> untextured_;  // material -> its copy without texture
     std::optional<Camera> camera_;
     std::vector<PunctualLight> lights_;
     std::vector<std::uint32_t> nodePath_;  // the nodes from the root to the one visited

@@ -1,10 +1,63 @@
 #include "radiosity/Scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
 namespace rad {
+
+namespace {
+
+// sRGB-encoded 8-bit values to linear, once: every element of a textured
+// polygon samples its texels.
+const std::array<double, 256>& linearOfSrgb() {
+    static const std::array<double, 256> table = [] {
+        std::array<double, 256> t{};
+        for (int i = 0; i < 256; ++i) {
+            const double c = i / 255.0;
+            t[i] = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+        }
+        return t;
+    }();
+    return table;
+}
+
+// A texel index along one axis of n texels, wrapped.
+std::uint32_t wrapIndex(std::int64_t i, std::uint32_t n, Texture::Wrap wrap) {
+    const auto m = static_cast<std::int64_t>(n);
+    switch (wrap) {
+        case Texture::Wrap::Clamp: return static_cast<std::uint32_t>(std::clamp<std::int64_t>(i, 0, m - 1));
+        case Texture::Wrap::Mirror: {
+            const std::int64_t p = ((i % (2 * m)) + 2 * m) % (2 * m);
+            return static_cast<std::uint32_t>(p < m ? p : 2 * m - 1 - p);
+        }
+        case Texture::Wrap::Repeat: break;
+    }
+    return static_cast<std::uint32_t>(((i % m) + m) % m);
+}
+
+}  // namespace
+
+glm::dvec3 Texture::texel(const glm::dvec2& uv) const {
+    if (width == 0 || height == 0) return glm::dvec3(1.0);
+    const double x = std::floor(uv.x * width), y = std::floor(uv.y * height);
+    if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e15 || std::abs(y) > 1e15) return glm::dvec3(0.0);
+    const std::size_t at = (std::size_t(wrapIndex(static_cast<std::int64_t>(y), height, wrapV)) * width +
+                            wrapIndex(static_cast<std::int64_t>(x), width, wrapU)) * 4;
+    const std::array<double, 256>& linear = linearOfSrgb();
+    return glm::dvec3(linear[srgba[at]], linear[srgba[at + 1]], linear[srgba[at + 2]]);
+}
+
+glm::dvec3 Texture::mean() const {
+    if (width == 0 || height == 0) return glm::dvec3(1.0);
+    const std::array<double, 256>& linear = linearOfSrgb();
+    glm::dvec3 sum(0.0);
+    const std::size_t n = std::size_t(width) * height;
+    for (std::size_t i = 0; i < n; ++i)
+        sum += glm::dvec3(linear[srgba[4 * i]], linear[srgba[4 * i + 1]], linear[srgba[4 * i + 2]]);
+    return sum / double(n);
+}
 
 glm::dvec3 Polygon::normal() const {
     // Newell's method: robust for any planar polygon.

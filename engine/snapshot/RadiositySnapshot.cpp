@@ -25,6 +25,7 @@ struct Vertex {
     double weight = 0.0;       // sum of leaf area
     glm::dvec3 position{0.0};
     glm::dvec3 value{0.0};     // the B it shows
+    glm::dvec3 albedo{0.0};    // sum of leaf area times reflectance (textured polygons)
 };
 
 void collectLeaves(const Hierarchy& h, ElementId e, std::vector<ElementId>& out) {
@@ -43,7 +44,7 @@ struct Scratch {
 
 // Sorted vectors, not hash maps: a polygon has a few vertices on average,
 // and building a map per polygon per frame was most of the snapshot.
-void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vector<double>& weights,
+void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vector<double>& weights,
                 std::vector<std::uint32_t>& outline, Scratch& scratch) {
     std::vector<ElementId>& leaves = scratch.leaves;
     leaves.clear();
@@ -60,7 +61,7 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
     for (ElementId l : leaves) {
         const HElement& e = h[l];
         for (int k = 0; k < e.patch.n; ++k)
-            corners.push_back({lattice(e.param[k]), e.area * e.radiosity, e.area, e.patch.v[k], {}});
+            corners.push_back({lattice(e.param[k]), e.area * e.radiosity, e.area, e.patch.v[k], {}, e.area * e.reflectance});
     }
     std::sort(corners.begin(), corners.end(), [](const Vertex& a, const Vertex& b) { return a.p < b.p; });
     std::vector<Vertex>& vertices = scratch.vertices;  // one per lattice point, in lattice order
@@ -72,6 +73,7 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
         }
         vertices.back().weighted += c.weighted;
         vertices.back().weight += c.weight;
+        vertices.back().albedo += c.albedo;
         vertices.back().position = c.position;
     }
     for (Vertex& v : vertices) v.value = v.weight > 0.0 ? v.weighted / v.weight : glm::dvec3(0.0);
@@ -99,6 +101,11 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
 
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
     const glm::vec3 normal(h[top].normal);
+    // Textured display (Snapshot.h): an emitter is not textured.
+    const Polygon& polygon = scene.polygons[h[top].polygon];
+    const Material& material = scene.materials[polygon.material];
+    const bool textures = !scene.textures.empty();
+    const bool textured = textures && material.texture >= 0 && luminance(material.emission) <= 0.0;
     // The outline of the parametric domain: the unit square of a quad, the
     // triangle (0,0), (1,0), (0,1) of a triangle, on the lattice.
     const auto size = static_cast<std::int64_t>(scale);
@@ -111,6 +118,23 @@ void addPolygon(const Hierarchy& h, ElementId top, MeshSnapshot& mesh, std::vect
         mesh.normals.push_back(normal);
         mesh.colors.emplace_back(v.value);
         weights.push_back(v.weight);
+        if (!textures) continue;
+        if (!textured) {
+            mesh.uvs.emplace_back(0.0f);
+            mesh.textureLayer.push_back(-1);
+            mesh.texelScale.emplace_back(1.0f);
+            continue;
+        }
+        // colors * texel * texelScale = B with the texel's reflectance in
+        // place of the mean reflectance the leaves computed B with.
+        const glm::dvec3 albedo = v.weight > 0.0 ? v.albedo / v.weight : glm::dvec3(0.0);
+        glm::dvec3 perTexel(0.0);
+        for (int c = 0; c < 3; ++c)
+            if (albedo[c] > 0.0 && material.textureMean[c] > 0.0)
+                perTexel[c] = material.reflectance[c] / material.textureMean[c] / albedo[c];
+        mesh.uvs.emplace_back(polygonTexCoord(polygon, glm::dvec2(double(q.i), double(q.j)) / scale));
+        mesh.textureLayer.push_back(material.texture);
+        mesh.texelScale.emplace_back(perTexel);
     }
     for (ElementId l : leaves) {
         const HElement& e = h[l];
@@ -199,6 +223,15 @@ std::uint64_t polygonSignature(const Hierarchy& h, ElementId top, std::vector<El
     return hash;
 }
 
+// A part's texturing copied into the mesh at `offset` (nothing when the
+// scene has no textures).
+void copyTexturing(const MeshSnapshot& part, MeshSnapshot& mesh, std::size_t offset) {
+    const auto at = static_cast<std::ptrdiff_t>(offset);
+    std::copy(part.uvs.begin(), part.uvs.end(), mesh.uvs.begin() + at);
+    std::copy(part.textureLayer.begin(), part.textureLayer.end(), mesh.textureLayer.begin() + at);
+    std::copy(part.texelScale.begin(), part.texelScale.end(), mesh.texelScale.begin() + at);
+}
+
 // The re-meshed parts written over their old places, when each kept its
 // vertex and index counts; false (nothing written) otherwise. The smoothing
 // groups any of their outline vertices were in or are in now are summed
@@ -234,6 +267,7 @@ bool patchInPlace(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<st
         std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
         std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
         std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
+        copyTexturing(part.mesh, mesh, offset);
         for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
             mesh.indices[cache.indexAt[p] + i] = part.mesh.indices[i] + offset;
     });
@@ -297,11 +331,14 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
             const ElementId top = hierarchy.polygonElement(static_cast<std::uint32_t>(p));
             const std::uint64_t signature = top == kNone ? 0 : polygonSignature(hierarchy, top, scratch.leaves);
             if (part.valid && part.signature == signature) continue;
-            for (std::vector<glm::vec3>* v : {&part.mesh.positions, &part.mesh.normals, &part.mesh.colors}) v->clear();
+            for (std::vector<glm::vec3>* v : {&part.mesh.positions, &part.mesh.normals, &part.mesh.colors, &part.mesh.texelScale})
+                v->clear();
+            part.mesh.uvs.clear();
+            part.mesh.textureLayer.clear();
             part.mesh.indices.clear();
             part.weights.clear();
             part.outline.clear();
-            if (top != kNone) addPolygon(hierarchy, top, part.mesh, part.weights, part.outline, scratch);
+            if (top != kNone) addPolygon(scene, hierarchy, top, part.mesh, part.weights, part.outline, scratch);
             part.signature = signature;
             part.valid = true;
             remeshed[p] = 1;
@@ -327,6 +364,11 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
         outlineAt[p + 1] = outlineAt[p] + part.outline.size();
     }
     for (std::vector<glm::vec3>* v : {&mesh.positions, &mesh.normals, &mesh.colors}) v->resize(vertexAt[polygons]);
+    const std::size_t texturedVertices = scene.textures.empty() ? 0 : vertexAt[polygons];
+    mesh.uvs.resize(texturedVertices);
+    mesh.textureLayer.resize(texturedVertices);
+    mesh.texelScale.resize(texturedVertices);
+    mesh.textures = scene.textures;
     for (std::vector<glm::vec3>* v : {&mesh.linePositions, &mesh.lineColors}) v->clear();
     mesh.indices.resize(indexAt[polygons]);
     std::vector<double> weights(vertexAt[polygons]);
@@ -338,6 +380,7 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
             std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
             std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
             std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
+            copyTexturing(part.mesh, mesh, offset);
             std::copy(part.weights.begin(), part.weights.end(), weights.begin() + offset);
             for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
                 mesh.indices[indexAt[p] + i] = part.mesh.indices[i] + offset;

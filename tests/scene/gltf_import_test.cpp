@@ -356,56 +356,6 @@ TEST(GltfImport, MaterialsFactorsEmissiveStrengthAndDefault) {
     EXPECT_EQ(s.objects[3].name, "node3");
 }
 
-// --- A tiny PNG writer (stored deflate blocks) for the texture test. ---
-
-std::uint32_t crc32(const std::string& bytes) {
-    std::uint32_t c = 0xffffffffu;
-    for (char ch : bytes) {
-        c ^= static_cast<unsigned char>(ch);
-        for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
-    }
-    return c ^ 0xffffffffu;
-}
-
-std::string bigEndian(std::uint32_t v) {
-    return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
-            static_cast<char>(v)};
-}
-
-std::string pngChunk(const std::string& type, const std::string& data) {
-    return bigEndian(static_cast<std::uint32_t>(data.size())) + type + data +
-           bigEndian(crc32(type + data));
-}
-
-// RGB8 image, rows top to bottom.
-std::string makePng(int width, int height, const std::vector<std::array<unsigned char, 3>>& rgb) {
-    std::string raw;
-    for (int y = 0; y < height; ++y) {
-        raw += '\0';  // filter: none
-        for (int x = 0; x < width; ++x)
-            for (unsigned char c : rgb[static_cast<std::size_t>(y * width + x)])
-                raw += static_cast<char>(c);
-    }
-    std::uint32_t a = 1, b = 0;
-    for (char ch : raw) {
-        a = (a + static_cast<unsigned char>(ch)) % 65521;
-        b = (b + a) % 65521;
-    }
-    const auto len = static_cast<std::uint16_t>(raw.size());
-    std::string z = "\x78\x01";
-    z += '\x01';  // final stored block
-    z += static_cast<char>(len & 0xff);
-    z += static_cast<char>(len >> 8);
-    z += static_cast<char>(~len & 0xff);
-    z += static_cast<char>((~len >> 8) & 0xff);
-    z += raw + bigEndian((b << 16) | a);
-    std::string ihdr = bigEndian(static_cast<std::uint32_t>(width)) +
-                       bigEndian(static_cast<std::uint32_t>(height));
-    ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8-bit RGB, no interlace
-    return std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", ihdr) + pngChunk("IDAT", z) +
-           pngChunk("IEND", "");
-}
-
 double srgbDecode(double c) {
     return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
@@ -413,7 +363,7 @@ double srgbDecode(double c) {
 TEST(GltfImport, BaseColorTextureMeanIsTakenInLinearSpace) {
     TempDir dir;
     GltfBuilder g;
-    const std::string png = makePng(2, 1, {{255, 128, 0}, {0, 128, 64}});
+    const std::string png = test::makePng(2, 1, {{255, 128, 0}, {0, 128, 64}});
     g.images.push_back("{\"uri\":\"data:image/png;base64," + base64(png) + "\"}");
     g.textures.push_back("{\"source\":0}");
     const int mat = g.addMaterial(

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -61,6 +62,56 @@ inline std::string joined(const std::vector<std::string>& items) {
     return out;
 }
 
+// A tiny PNG writer (stored deflate blocks) for the texture tests.
+
+inline std::uint32_t crc32(const std::string& bytes) {
+    std::uint32_t c = 0xffffffffu;
+    for (char ch : bytes) {
+        c ^= static_cast<unsigned char>(ch);
+        for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xffffffffu;
+}
+
+inline std::string bigEndian(std::uint32_t v) {
+    return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+            static_cast<char>(v)};
+}
+
+inline std::string pngChunk(const std::string& type, const std::string& data) {
+    return bigEndian(static_cast<std::uint32_t>(data.size())) + type + data +
+           bigEndian(crc32(type + data));
+}
+
+// RGB8 image, rows top to bottom.
+inline std::string makePng(int width, int height, const std::vector<std::array<unsigned char, 3>>& rgb) {
+    std::string raw;
+    for (int y = 0; y < height; ++y) {
+        raw += '\0';  // filter: none
+        for (int x = 0; x < width; ++x)
+            for (unsigned char c : rgb[static_cast<std::size_t>(y * width + x)])
+                raw += static_cast<char>(c);
+    }
+    std::uint32_t a = 1, b = 0;
+    for (char ch : raw) {
+        a = (a + static_cast<unsigned char>(ch)) % 65521;
+        b = (b + a) % 65521;
+    }
+    const auto len = static_cast<std::uint16_t>(raw.size());
+    std::string z = "\x78\x01";
+    z += '\x01';  // final stored block
+    z += static_cast<char>(len & 0xff);
+    z += static_cast<char>(len >> 8);
+    z += static_cast<char>(~len & 0xff);
+    z += static_cast<char>((~len >> 8) & 0xff);
+    z += raw + bigEndian((b << 16) | a);
+    std::string ihdr = bigEndian(static_cast<std::uint32_t>(width)) +
+                       bigEndian(static_cast<std::uint32_t>(height));
+    ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8-bit RGB, no interlace
+    return std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", ihdr) + pngChunk("IDAT", z) +
+           pngChunk("IEND", "");
+}
+
 struct GltfBuilder {
     std::string bin;
     std::vector<std::string> bufferViews, accessors, meshes, nodes, materials, cameras, images,
@@ -98,9 +149,19 @@ struct GltfBuilder {
                            ",\"componentType\":" + std::to_string(componentType) +
                            ",\"type\":\"SCALAR\",\"count\":" + std::to_string(idx.size()) + "}");
     }
+    int addTexCoords(const std::vector<glm::vec2>& uv) {
+        std::string bytes(uv.size() * 8, '\0');
+        std::memcpy(bytes.data(), uv.data(), bytes.size());
+        const int view = addView(bytes);
+        return addAccessor("{\"bufferView\":" + std::to_string(view) +
+                           ",\"componentType\":5126,\"type\":\"VEC2\",\"count\":" + std::to_string(uv.size()) + "}");
+    }
     // A mesh with one primitive; material < 0 leaves it out, mode < 0 too.
-    int addMesh(const std::string& name, int positions, int indices, int material, int mode = -1) {
-        std::string prim = "{\"attributes\":{\"POSITION\":" + std::to_string(positions) + "}";
+    // texCoords >= 0: its TEXCOORD_0 accessor.
+    int addMesh(const std::string& name, int positions, int indices, int material, int mode = -1, int texCoords = -1) {
+        std::string prim = "{\"attributes\":{\"POSITION\":" + std::to_string(positions);
+        if (texCoords >= 0) prim += ",\"TEXCOORD_0\":" + std::to_string(texCoords);
+        prim += "}";
         if (indices >= 0) prim += ",\"indices\":" + std::to_string(indices);
         if (material >= 0) prim += ",\"material\":" + std::to_string(material);
         if (mode >= 0) prim += ",\"mode\":" + std::to_string(mode);

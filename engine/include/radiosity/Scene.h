@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -23,10 +24,32 @@ struct SceneError : std::runtime_error {
 // estimates and refinement decisions.
 inline double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
+// A base colour texture: sRGB-encoded RGBA, 8 bits a channel, rows from the
+// top of the image. Texture coordinates follow glTF: (0, 0) is the first
+// texel of the first row, and u runs along a row.
+struct Texture {
+    enum class Wrap : std::uint8_t { Repeat, Clamp, Mirror };
+    std::string name;
+    std::uint32_t width = 0, height = 0;
+    std::vector<std::uint8_t> srgba;  // width * height * 4
+    Wrap wrapU = Wrap::Repeat, wrapV = Wrap::Repeat;
+
+    // Linear RGB of the texel under uv, wrapped as the glTF sampler says
+    // (no filtering: element reflectances are means of whole texels).
+    glm::dvec3 texel(const glm::dvec2& uv) const;
+    glm::dvec3 mean() const;  // linear RGB, over the whole image
+};
+
 struct Material {
     std::string name;
     glm::dvec3 reflectance{0.0};  // rho, each channel in [0,1)
     glm::dvec3 emission{0.0};     // E, each channel >= 0
+    // A base colour texture (index into Scene::textures), or -1. Then
+    // `reflectance` is the mean over the whole texture (glTF's
+    // baseColorFactor times the texture's mean), and each surface element
+    // reflects reflectance * (mean of the texels under it) / textureMean.
+    std::int32_t texture = -1;
+    glm::dvec3 textureMean{1.0};  // linear RGB mean of the texture's texels
 };
 
 // A planar convex polygon: a triangle or a quad. Counter-clockwise seen from
@@ -36,6 +59,9 @@ struct Polygon {
     std::uint8_t vertexCount = 3;
     std::uint32_t material = 0;
     std::uint32_t object = 0;
+    // Texture coordinates per vertex (glTF TEXCOORD of the material's
+    // texture); zero when the material has no texture.
+    std::array<glm::vec2, 4> uv{};
 
     glm::dvec3 normal() const;  // unit, from the winding
     double area() const;
@@ -116,6 +142,9 @@ struct Scene {
     std::vector<Polygon> polygons;
     std::vector<PunctualLight> lights;
     std::optional<Camera> camera;
+    // Shared, not copied: a scene is copied per engine and per frame's
+    // reference, its images are not.
+    std::vector<std::shared_ptr<const Texture>> textures;
 
     Aabb bounds() const;
     Aabb objectBounds(std::uint32_t object) const;

@@ -6,17 +6,33 @@
 // same scene.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 namespace rad {
 
+struct Texture;
+
 struct MeshSnapshot {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec3> colors;  // linear RGB, same units as B
     std::vector<std::uint32_t> indices;  // triangles, counter-clockwise front faces
+
+    // Textured display. `colors` is the radiosity the solution computed,
+    // with each element's mean reflectance; a textured surface shows its
+    // detail by drawing colors * texel * texelScale, where texel is the
+    // linear RGB of textures[textureLayer] at uv (bilinear, repeated): the
+    // irradiance carried by the vertex colour, times the reflectance at the
+    // texel. textureLayer -1: untextured, drawn as colors. All three are
+    // either empty (nothing textured) or one per vertex. Emitters are never
+    // textured.
+    std::vector<glm::vec2> uvs;
+    std::vector<std::int32_t> textureLayer;
+    std::vector<glm::vec3> texelScale;
+    std::vector<std::shared_ptr<const Texture>> textures;  // Scene::textures
 
     // Overlay line segments: pairs of points, one colour per point.
     std::vector<glm::vec3> linePositions;

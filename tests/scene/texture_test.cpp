@@ -1,0 +1,125 @@
+// Base colour textures (issue 15): texture coordinates reach the polygons,
+// each surface element reflects the mean of the texels under it, the light
+// the solution computes follows the texture, and the snapshot gives a
+// renderer what it needs to draw the texels.
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "hierarchy/Hierarchy.h"
+#include "radiosity/Engine.h"
+#include "radiosity/Gltf.h"
+#include "snapshot/RadiositySnapshot.h"
+#include "support/GltfBuilder.h"
+
+namespace rad {
+namespace {
+
+using test::GltfBuilder;
+
+// A 2 x 3 m rectangle in the plane z = 0 facing +z, texture coordinates
+// u = x / 2, v = y / 3, and a 4 x 1 texture: two white texels, then two
+// black ones, so the half x < 1 is white. baseColorFactor 0.8.
+GltfBuilder texturedRectangle() {
+    GltfBuilder g;
+    const std::string png = test::makePng(4, 1, {{255, 255, 255}, {255, 255, 255}, {0, 0, 0}, {0, 0, 0}});
+    g.images.push_back("{\"uri\":\"data:image/png;base64," + test::base64(png) + "\"}");
+    g.textures.push_back("{\"source\":0}");
+    const int mat = g.addMaterial(
+        "{\"name\":\"Tex\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.8,0.8,1],"
+        "\"baseColorTexture\":{\"index\":0}}}");
+    const std::vector<glm::vec3> p = {{0, 0, 0}, {2, 0, 0}, {2, 3, 0}, {0, 3, 0}};
+    const std::vector<glm::vec2> uv = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    g.addMesh("T", g.addPositions(p), g.addIndices({0, 1, 2, 0, 2, 3}), mat, -1, g.addTexCoords(uv));
+    g.addNode("\"name\":\"T\",\"mesh\":0");
+    return g;
+}
+
+TEST(Texture, CoordinatesReachThePolygons) {
+    test::TempDir dir;
+    const Scene s = loadGltf(texturedRectangle().writeEmbedded(dir).string());
+    ASSERT_EQ(s.textures.size(), 1u);
+    ASSERT_EQ(s.polygons.size(), 1u);  // the two triangles merge: the coordinates are affine
+    const Polygon& p = s.polygons[0];
+    const Material& m = s.materials[p.material];
+    EXPECT_EQ(m.texture, 0);
+    EXPECT_NEAR(m.textureMean.x, 0.5, 1e-12);
+    EXPECT_NEAR(m.reflectance.x, 0.4, 1e-12);  // the factor times the mean
+    for (int k = 0; k < p.vertexCount; ++k) {
+        EXPECT_NEAR(p.uv[k].x, p.vertices[k].x / 2.0, 1e-6) << k;
+        EXPECT_NEAR(p.uv[k].y, p.vertices[k].y / 3.0, 1e-6) << k;
+    }
+}
+
+TEST(Texture, ElementsReflectTheTexelsUnderThem) {
+    test::TempDir dir;
+    const Scene s = loadGltf(texturedRectangle().writeEmbedded(dir).string());
+    Hierarchy h(s, 1e-6);
+    const ElementId top = h.polygonElement(0);
+    EXPECT_NEAR(h[top].reflectance.x, 0.4, 1e-12);  // the whole texture: its mean
+    h.subdivide(top);
+    ASSERT_EQ(h[top].children.size(), 4u);
+    for (ElementId c : h[top].children) {
+        const bool white = h[c].center.x < 1.0;
+        EXPECT_NEAR(h[c].reflectance.x, white ? 0.8 : 0.0, 1e-12) << "child at x = " << h[c].center.x;
+    }
+}
+
+// A light over the rectangle: the white half reflects, the black half does
+// not, and the snapshot's texels times texelScale give back the
+// reflectance each vertex's radiosity was computed with.
+TEST(Texture, TheSolutionAndTheSnapshotFollowTheTexture) {
+    test::TempDir dir;
+    Scene s = loadGltf(texturedRectangle().writeEmbedded(dir).string());
+    PunctualLight bulb;
+    bulb.name = "bulb";
+    bulb.position = glm::dvec3(1.0, 1.5, 2.0);
+    bulb.intensity = glm::dvec3(10.0);
+    s.lights.push_back(bulb);
+    Engine engine(s, EngineSettings{});
+    ASSERT_TRUE(engine.solve().converged);
+    const MeshSnapshot mesh = engine.snapshot();
+    ASSERT_EQ(mesh.uvs.size(), mesh.positions.size());
+    ASSERT_EQ(mesh.textureLayer.size(), mesh.positions.size());
+    ASSERT_EQ(mesh.texelScale.size(), mesh.positions.size());
+    ASSERT_EQ(mesh.textures.size(), 1u);
+    int white = 0, black = 0;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        EXPECT_EQ(mesh.textureLayer[i], 0);
+        EXPECT_NEAR(mesh.uvs[i].x, mesh.positions[i].x / 2.0, 1e-5);
+        const double x = mesh.positions[i].x;
+        if (x < 0.9) {
+            // Leaves that all lie on white texels: B = 0.8 H there, and the
+            // texel (white, 1) times texelScale is 1.
+            EXPECT_GT(mesh.colors[i].x, 0.0);
+            EXPECT_NEAR(mesh.textures[0]->texel(glm::dvec2(mesh.uvs[i])).x * mesh.texelScale[i].x, 1.0, 1e-5);
+            ++white;
+        } else if (x > 1.1) {
+            EXPECT_EQ(mesh.colors[i].x, 0.0f);  // black texels reflect nothing
+            ++black;
+        }
+    }
+    EXPECT_GT(white, 4);
+    EXPECT_GT(black, 4);
+}
+
+// A textured primitive without texture coordinates: its texture counts as
+// its mean, with a note.
+TEST(Texture, NoCoordinatesMeansTheMean) {
+    test::TempDir dir;
+    GltfBuilder g = texturedRectangle();
+    g.meshes.clear();
+    g.addMesh("T", g.addPositions({{0, 0, 0}, {2, 0, 0}, {2, 3, 0}, {0, 3, 0}}), g.addIndices({0, 1, 2, 0, 2, 3}), 0);
+    ImportNotes notes;
+    const Scene s = loadGltf(g.writeEmbedded(dir).string(), &notes);
+    const Material& m = s.materials[s.polygons[0].material];
+    EXPECT_LT(m.texture, 0);
+    EXPECT_NEAR(m.reflectance.x, 0.4, 1e-12);
+    bool noted = false;
+    for (const std::string& n : notes.lines) noted = noted || n.find("TEXCOORD_0") != std::string::npos;
+    EXPECT_TRUE(noted);
+}
+
+}  // namespace
+}  // namespace rad
