@@ -7,9 +7,6 @@
 
 namespace rad {
 
-namespace {
-
-// Memory of the given kind for a resource with these requirements.
 UniqueMemory allocateMemory(const VulkanContext& context, const VkMemoryRequirements& req,
                             VkMemoryPropertyFlags properties) {
     auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
@@ -19,8 +16,6 @@ UniqueMemory allocateMemory(const VulkanContext& context, const VkMemoryRequirem
     vkCheck(vkAllocateMemory(context.device(), &alloc, nullptr, &memory), "vkAllocateMemory");
     return UniqueMemory(context.device(), memory);
 }
-
-}  // namespace
 
 UniqueImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect) {
     auto info = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);

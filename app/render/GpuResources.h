@@ -13,6 +13,10 @@ namespace rad {
 
 class VulkanContext;
 
+// Memory of the given kind for a resource with these requirements.
+UniqueMemory allocateMemory(const VulkanContext& context, const VkMemoryRequirements& req,
+                            VkMemoryPropertyFlags properties);
+
 // A 2D view of mip level 0, layer 0 of the image.
 UniqueImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect);
 

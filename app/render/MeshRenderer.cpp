@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "render/VulkanContext.h"
@@ -24,13 +25,59 @@ constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADE
 constexpr std::uint32_t kPushSize = offsetof(DrawPushConstants, exposureScale) + sizeof(float);
 static_assert(offsetof(DrawPushConstants, exposureScale) == 64, "the GLSL block (std430) has the float at 64");
 
-std::vector<ColoredVertex> interleave(const std::vector<glm::vec3>& positions,
-                                      const std::vector<glm::vec3>& colors, const char* what) {
-    if (colors.size() != positions.size())
-        throw std::runtime_error(std::string("MeshSnapshot: ") + what +
-                                 " colours and positions differ in count");
-    std::vector<ColoredVertex> out(positions.size());
-    for (std::size_t i = 0; i < positions.size(); ++i) out[i] = {positions[i], colors[i]};
+static_assert(sizeof(MeshVertex) == 48, "MeshVertex is tightly packed (the vertex attributes)");
+
+// One vector of the snapshot: empty, or one per vertex.
+template <typename T>
+void checkPerVertex(const std::vector<T>& values, std::size_t vertices, const char* what) {
+    if (!values.empty() && values.size() != vertices)
+        throw std::runtime_error(std::string("MeshSnapshot: ") + std::to_string(values.size()) +
+                                 " " + what + " for " + std::to_string(vertices) + " vertices");
+}
+
+std::vector<MeshVertex> surfaceVertices(const MeshSnapshot& snapshot) {
+    const std::size_t n = snapshot.positions.size();
+    if (snapshot.colors.size() != n)
+        throw std::runtime_error("MeshSnapshot: vertex colours and positions differ in count");
+    checkPerVertex(snapshot.uvs, n, "uvs");
+    checkPerVertex(snapshot.textureLayer, n, "texture layers");
+    checkPerVertex(snapshot.texelScale, n, "texel scales");
+    // All three or none (Snapshot.h): a layer without its uv would sample
+    // one texel and pass for textured.
+    const bool textured = !snapshot.textureLayer.empty();
+    if (textured != !snapshot.uvs.empty() || textured != !snapshot.texelScale.empty())
+        throw std::runtime_error(
+            std::string("MeshSnapshot: uvs, texture layers and texel scales ") +
+            "must all be empty or all one per vertex (" + std::to_string(snapshot.uvs.size()) +
+            " uvs, " + std::to_string(snapshot.textureLayer.size()) + " texture layers, " +
+            std::to_string(snapshot.texelScale.size()) + " texel scales)");
+    const auto layers = static_cast<std::int64_t>(snapshot.textures.size());
+    std::vector<MeshVertex> out(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        out[i].position = snapshot.positions[i];
+        out[i].color = snapshot.colors[i];
+        if (!textured) continue;
+        const std::int32_t layer = snapshot.textureLayer[i];
+        if (layer < -1 || layer >= layers)
+            throw std::runtime_error("MeshSnapshot: vertex " + std::to_string(i) +
+                                     " has texture layer " + std::to_string(layer) + " of " +
+                                     std::to_string(layers) + " textures");
+        out[i].uv = snapshot.uvs[i];
+        out[i].texelScale = snapshot.texelScale[i];
+        out[i].layer = layer;
+    }
+    return out;
+}
+
+// Overlay lines: untextured.
+std::vector<MeshVertex> lineVertices(const MeshSnapshot& snapshot) {
+    if (snapshot.lineColors.size() != snapshot.linePositions.size())
+        throw std::runtime_error("MeshSnapshot: line colours and positions differ in count");
+    std::vector<MeshVertex> out(snapshot.linePositions.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        out[i].position = snapshot.linePositions[i];
+        out[i].color = snapshot.lineColors[i];
+    }
     return out;
 }
 
@@ -56,10 +103,8 @@ UniqueShaderModule createShader(VkDevice device, const std::uint32_t* code, std:
 }  // namespace
 
 GpuMesh::GpuMesh(const VulkanContext& context, const MeshSnapshot& snapshot) {
-    const std::vector<ColoredVertex> vertices =
-        interleave(snapshot.positions, snapshot.colors, "vertex");
-    const std::vector<ColoredVertex> lines =
-        interleave(snapshot.linePositions, snapshot.lineColors, "line");
+    const std::vector<MeshVertex> vertices = surfaceVertices(snapshot);
+    const std::vector<MeshVertex> lines = lineVertices(snapshot);
     if (snapshot.indices.size() % 3 != 0)
         throw std::runtime_error("MeshSnapshot: index count is not a multiple of 3");
     for (std::uint32_t i : snapshot.indices)
@@ -79,9 +124,13 @@ MeshRenderer::MeshRenderer(const VulkanContext& context, VkRenderPass renderPass
     lineWidthRange_[0] = context.properties().limits.lineWidthRange[0];
     lineWidthRange_[1] = context.properties().limits.lineWidthRange[1];
 
+    textureSetLayout_ = createTextureSetLayout(device);
+    const VkDescriptorSetLayout setLayout = textureSetLayout_.get();
     const VkPushConstantRange push{kPushStages, 0, kPushSize};
     auto layoutInfo =
         vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout;
     layoutInfo.pushConstantRangeCount = 1;
     layoutInfo.pPushConstantRanges = &push;
     VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -118,11 +167,14 @@ UniquePipeline MeshRenderer::createPipeline(VkDevice device, VkRenderPass render
     specialization.pData = &encodeSrgb;
     stages[1].pSpecializationInfo = &specialization;
 
-    const VkVertexInputBindingDescription binding{0, sizeof(ColoredVertex),
+    const VkVertexInputBindingDescription binding{0, sizeof(MeshVertex),
                                                   VK_VERTEX_INPUT_RATE_VERTEX};
-    const std::array<VkVertexInputAttributeDescription, 2> attributes{{
-        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ColoredVertex, position)},
-        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ColoredVertex, color)},
+    const std::array<VkVertexInputAttributeDescription, 5> attributes{{
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(MeshVertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(MeshVertex, color)},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(MeshVertex, uv)},
+        {3, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(MeshVertex, texelScale)},
+        {4, 0, VK_FORMAT_R32_SINT, offsetof(MeshVertex, layer)},
     }};
     auto vertexInput = vkStruct<VkPipelineVertexInputStateCreateInfo>(
         VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
@@ -200,8 +252,9 @@ UniquePipeline MeshRenderer::createPipeline(VkDevice device, VkRenderPass render
     return {device, pipeline};
 }
 
-void MeshRenderer::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& viewProjection,
-                        VkExtent2D extent, const MeshDrawOptions& options) const {
+void MeshRenderer::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const GpuTextures& textures,
+                        const glm::mat4& viewProjection, VkExtent2D extent,
+                        const MeshDrawOptions& options) const {
     // Positive height: the projection already flips y (see CameraView), so
     // row 0 of the attachment is the top of the picture.
     const VkViewport viewport{
@@ -211,8 +264,17 @@ void MeshRenderer::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat
     const VkDeviceSize offset = 0;
     // exp2 in double, as the CLI's CPU scaling of PNGs does: the same float.
     DrawPushConstants push{viewProjection, static_cast<float>(std::exp2(options.exposure))};
+    // Both pipelines share the layout, so the set bound once serves both (the
+    // lines' shader declares the sampler too, and must find it bound).
+    const bool drawSurfaces = options.surfaces && mesh.indexCount() > 0;
+    const bool drawLines = options.overlays && mesh.lineVertexCount() > 0;
+    if (drawSurfaces || drawLines) {
+        const VkDescriptorSet set = textures.descriptorSet();
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set, 0,
+                                nullptr);
+    }
 
-    if (options.surfaces && mesh.indexCount() > 0) {
+    if (drawSurfaces) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, surfacePipeline_.get());
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
@@ -222,7 +284,7 @@ void MeshRenderer::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat
         vkCmdBindIndexBuffer(cmd, mesh.indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, mesh.indexCount(), 1, 0, 0, 0);
     }
-    if (options.overlays && mesh.lineVertexCount() > 0) {
+    if (drawLines) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, linePipeline_.get());
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);

@@ -1,12 +1,20 @@
 #pragma once
 // Drawing a MeshSnapshot into any render pass with one colour and one depth
-// attachment: the offscreen renderer's, or later a swapchain's.
+// attachment: the offscreen renderer's, or a swapchain's.
 //
 //   GpuMesh mesh(context, snapshot);                     // upload once per snapshot
+//   GpuTextures textures(context, snapshot.textures);    // once per texture list (GpuTextures.h)
 //   MeshRenderer renderer(context, renderPass);          // once per render pass
 //   ... vkCmdBeginRenderPass(cmd, ...);
-//   renderer.draw(cmd, mesh, viewProjection, extent, options);  // surfaces, then overlay lines
+//   renderer.draw(cmd, mesh, textures, viewProjection, extent, options);  // surfaces, then lines
 //   ... vkCmdEndRenderPass(cmd);
+//
+// The textures are an argument of each draw, not state of the renderer: the
+// descriptor set belongs to the GpuTextures (written once), so a frame in
+// flight keeps reading the set it was recorded with while the next frame
+// draws with a new one. Both objects must outlive the command buffer's
+// execution. A textured vertex is drawn as colour * texel * texelScale, an
+// untextured one (layer -1) as its colour.
 //
 // Exposure is a draw option (a push constant): changing it re-records, it
 // does not re-upload.
@@ -17,6 +25,7 @@
 #include <glm/glm.hpp>
 
 #include "render/GpuResources.h"
+#include "render/GpuTextures.h"
 #include "render/RenderPass.h"
 #include "render/VkCheck.h"
 
@@ -25,16 +34,25 @@ namespace rad {
 class VulkanContext;
 struct MeshSnapshot;
 
-// Vertex layout shared by surfaces and lines (shaders/gouraud.vert).
-struct ColoredVertex {
+// Vertex layout shared by surfaces and lines (shaders/gouraud.vert). Lines
+// use it too, untextured, so that one pair of shaders draws both.
+struct MeshVertex {
     glm::vec3 position;
     glm::vec3 color;  // linear RGB
+    glm::vec2 uv{0.0f};
+    glm::vec3 texelScale{1.0f};
+    std::int32_t layer = -1;  // GpuTextures layer (MeshSnapshot::textureLayer); -1: untextured
 };
 
-// The GPU copy of one MeshSnapshot. It must stay alive until the command
-// buffers that draw it have finished executing.
+// The GPU copy of one MeshSnapshot (its textures go to a GpuTextures). It
+// must stay alive until the command buffers that draw it have finished
+// executing.
 class GpuMesh {
   public:
+    // Throws std::runtime_error naming what does not fit: colours, uvs,
+    // texture layers or texel scales not one per vertex (the last three may
+    // all be empty), a layer outside -1..textures.size()-1, an index out of
+    // range, an odd number of line points.
     GpuMesh(const VulkanContext& context, const MeshSnapshot& snapshot);
 
     std::uint32_t indexCount() const { return indexCount_; }
@@ -75,14 +93,18 @@ class MeshRenderer {
                  ShaderOutput output = ShaderOutput::Linear);
 
     // Records into cmd, inside the render pass. Sets viewport and scissor to
-    // the whole extent. viewProjection maps world to Vulkan clip space.
-    void draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& viewProjection,
-              VkExtent2D extent, const MeshDrawOptions& options = {}) const;
+    // the whole extent and binds textures' descriptor set. viewProjection
+    // maps world to Vulkan clip space. textures: built from the snapshot's
+    // textures (a mesh without textured vertices may use any GpuTextures).
+    void draw(VkCommandBuffer cmd, const GpuMesh& mesh, const GpuTextures& textures,
+              const glm::mat4& viewProjection, VkExtent2D extent,
+              const MeshDrawOptions& options = {}) const;
 
   private:
     UniquePipeline createPipeline(VkDevice device, VkRenderPass renderPass, bool lines,
                                   ShaderOutput output) const;
 
+    UniqueDescriptorSetLayout textureSetLayout_;  // set 0: createTextureSetLayout
     UniquePipelineLayout layout_;
     UniquePipeline surfacePipeline_;  // triangles, Gouraud, depth test and write, no culling
     UniquePipeline linePipeline_;     // line list, no depth test: always on top

@@ -67,11 +67,16 @@ OffscreenRenderer::OffscreenRenderer(const VulkanContext& context, ShaderOutput 
 Image OffscreenRenderer::render(const MeshSnapshot& snapshot, const glm::mat4& viewProjection,
                                 int width, int height, const MeshDrawOptions& options) {
     const GpuMesh mesh(context_, snapshot);
-    return render(mesh, viewProjection, width, height, options);
+    if (!textures_ || !textures_->sameSources(snapshot.textures)) {
+        textures_.reset();  // the old upload goes first: one copy in memory at a time
+        textures_.emplace(context_, snapshot.textures);
+    }
+    return render(mesh, *textures_, viewProjection, width, height, options);
 }
 
-Image OffscreenRenderer::render(const GpuMesh& mesh, const glm::mat4& viewProjection, int width,
-                                int height, const MeshDrawOptions& options) {
+Image OffscreenRenderer::render(const GpuMesh& mesh, const GpuTextures& textures,
+                                const glm::mat4& viewProjection, int width, int height,
+                                const MeshDrawOptions& options) {
     // Set up: attachments of this size (the fence wait of the previous
     // render() means the old ones are idle).
     const VkExtent2D extent = checkedExtent(context_, width, height);
@@ -84,7 +89,7 @@ Image OffscreenRenderer::render(const GpuMesh& mesh, const glm::mat4& viewProjec
     VkCommandBuffer cmd = commandBuffer_;
     beginRecording(cmd);
     beginColorDepthPass(cmd, renderPass_.get(), target_->framebuffer.get(), extent, {0.0f, 0.0f, 0.0f, 0.0f});
-    meshRenderer_->draw(cmd, mesh, viewProjection, extent, options);
+    meshRenderer_->draw(cmd, mesh, textures, viewProjection, extent, options);
     vkCmdEndRenderPass(cmd);
     target_->readback.record(cmd, target_->color.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     endRecording(cmd);

@@ -6,7 +6,9 @@
 //   Image image = renderer.render(snapshot, view.viewProjection(), 512, 512);
 //
 // Attachments (R32G32B32A32_SFLOAT colour, D32 depth) and the readback buffer
-// are kept between frames and only recreated when the size changes.
+// are kept between frames and only recreated when the size changes; so are
+// the snapshot's textures, uploaded again only when its texture list is
+// another (GpuTextures::sameSources).
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -15,6 +17,7 @@
 #include "image/Image.h"
 #include "render/Commands.h"
 #include "render/GpuResources.h"
+#include "render/GpuTextures.h"
 #include "render/ImageReadback.h"
 #include "render/MeshRenderer.h"
 #include "render/RenderPass.h"
@@ -38,8 +41,10 @@ class OffscreenRenderer {
     // width and height >= 1, at most the device's maxImageDimension2D.
     Image render(const MeshSnapshot& snapshot, const glm::mat4& viewProjection, int width,
                  int height, const MeshDrawOptions& options = {});
-    Image render(const GpuMesh& mesh, const glm::mat4& viewProjection, int width, int height,
-                 const MeshDrawOptions& options = {});
+    // What the caller has uploaded already (the viewer's screenshot of the
+    // mesh on screen).
+    Image render(const GpuMesh& mesh, const GpuTextures& textures, const glm::mat4& viewProjection,
+                 int width, int height, const MeshDrawOptions& options = {});
 
     VkRenderPass renderPass() const { return renderPass_.get(); }
 
@@ -61,6 +66,9 @@ class OffscreenRenderer {
     VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;  // freed with the pool
     Fence frameDone_;
     std::optional<Target> target_;
+    // The last snapshot's textures (render(MeshSnapshot)); idle between calls,
+    // each of which waits for its frame.
+    std::optional<GpuTextures> textures_;
 };
 
 }  // namespace rad

@@ -79,5 +79,8 @@ using UniqueCommandPool = DeviceHandle<VkCommandPool, &vkDestroyCommandPool>;
 using UniqueFence = DeviceHandle<VkFence, &vkDestroyFence>;
 using UniqueSemaphore = DeviceHandle<VkSemaphore, &vkDestroySemaphore>;
 using UniqueSwapchain = DeviceHandle<VkSwapchainKHR, &vkDestroySwapchainKHR>;
+using UniqueSampler = DeviceHandle<VkSampler, &vkDestroySampler>;
+using UniqueDescriptorSetLayout = DeviceHandle<VkDescriptorSetLayout, &vkDestroyDescriptorSetLayout>;
+using UniqueDescriptorPool = DeviceHandle<VkDescriptorPool, &vkDestroyDescriptorPool>;
 
 }  // namespace rad

@@ -18,10 +18,12 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "cli/Warnings.h"
 #include "image/Image.h"
 #include "render/CameraView.h"
+#include "render/GpuTextures.h"
 #include "render/MeshRenderer.h"
 #include "render/OffscreenRenderer.h"
 #include "render/VulkanContext.h"
@@ -44,6 +46,16 @@ constexpr const char* kLightMark = " (light)";
 constexpr const char* kNoDisplay =
     "radiosity-viewer: no display (DISPLAY is not set); use radiosity-cli for headless work "
     "(radiosity-cli --help)";
+
+// What a frame draws: the engine's newest mesh and the textures of its
+// snapshot, held together so that WindowRenderer::endFrame keeps both alive
+// until the GPU has finished the frame. A new mesh shares the textures of the
+// one before when its snapshot has the same texture list (the usual case:
+// moves and edits change colours, not images).
+struct GpuScene {
+    std::shared_ptr<const GpuMesh> mesh;
+    std::shared_ptr<const GpuTextures> textures;
+};
 
 struct KeyEvents {
     bool toggleLinks = false, toggleChanged = false, quit = false, undo = false, redo = false, widen = false;
@@ -255,9 +267,9 @@ int runViewer(const ViewerOptions& options) {
         std::optional<std::uint32_t> gizmoPrintedFor;  // --print-gizmo: the selection last printed
         bool objectsPrinted = false;
 
-        // The GPU copy of the engine's newest mesh. Exposure is a draw option:
-        // moving the slider uploads nothing.
-        std::shared_ptr<const GpuMesh> gpuMesh;
+        // The GPU copy of the engine's newest mesh and its textures. Exposure
+        // is a draw option: moving the slider uploads nothing.
+        std::shared_ptr<const GpuScene> gpuScene;
         std::shared_ptr<const MeshSnapshot> gpuSource;
 
         auto pending = options.screenshots;
@@ -273,7 +285,13 @@ int runViewer(const ViewerOptions& options) {
             // Upload a new picture when the engine published one.
             if (snap->mesh && snap->mesh != gpuSource) {
                 gpuSource = snap->mesh;
-                gpuMesh = std::make_shared<const GpuMesh>(*context, *snap->mesh);
+                // The textures a frame in flight may still sample stay alive
+                // with that frame's GpuScene.
+                std::shared_ptr<const GpuTextures> textures = gpuScene ? gpuScene->textures : nullptr;
+                if (!textures || !textures->sameSources(snap->mesh->textures))
+                    textures = std::make_shared<const GpuTextures>(*context, snap->mesh->textures);
+                gpuScene = std::make_shared<const GpuScene>(
+                    GpuScene{std::make_shared<const GpuMesh>(*context, *snap->mesh), std::move(textures)});
                 if (firstMeshAt < 0.0) firstMeshAt = now;
             }
 
@@ -424,7 +442,7 @@ int runViewer(const ViewerOptions& options) {
                 });
             // The gizmo on a movable selection.
             ui::GizmoView gv{view.viewProjection(), viewport, cam.position, cam.up};
-            if (selected && selected->movable && gpuMesh && !selected->bounds.empty()) {
+            if (selected && selected->movable && gpuScene && !selected->bounds.empty()) {
                 const std::uint32_t id = *snap->selected;
                 glm::dmat4 current = selected->worldFromLocal;
                 glm::dvec3 center = selected->bounds.center();
@@ -496,7 +514,7 @@ int runViewer(const ViewerOptions& options) {
             // Where the lights are (they have no polygons to see): a marker
             // each, over the scene and under the panel and the gizmo, where
             // it was last sent (the engine may lag behind a drag).
-            for (std::uint32_t id = 0; id < snap->objects.size() && gpuMesh; ++id) {
+            for (std::uint32_t id = 0; id < snap->objects.size() && gpuScene; ++id) {
                 const ObjectInfo& o = snap->objects[id];
                 if (!o.light) continue;
                 const auto it = sent.find(id);
@@ -525,7 +543,7 @@ int runViewer(const ViewerOptions& options) {
             }
 
             // Test hook: where each object's box centre shows, to click on it.
-            if (options.printGizmo && !objectsPrinted && !snap->solving && gpuMesh) {
+            if (options.printGizmo && !objectsPrinted && !snap->solving && gpuScene) {
                 int wx = 0, wy = 0;
                 glfwGetWindowPos(window, &wx, &wy);
                 for (const ObjectInfo& o : snap->objects)
@@ -573,8 +591,8 @@ int runViewer(const ViewerOptions& options) {
                 try {
                     if (!offscreen) offscreen.emplace(*context);
                     // The mesh on screen, as on screen: exposure included.
-                    const Image image = offscreen->render(*gpuMesh, view.viewProjectionF(), std::max(fbw, 1),
-                                                          std::max(fbh, 1), drawOptions);
+                    const Image image = offscreen->render(*gpuScene->mesh, *gpuScene->textures, view.viewProjectionF(),
+                                                          std::max(fbw, 1), std::max(fbh, 1), drawOptions);
                     const std::string path = freeOutputPath(options.scene, "-screenshot", ".png");
                     writeImage(image, path);
                     lastMessage = "saved ";
@@ -606,9 +624,11 @@ int runViewer(const ViewerOptions& options) {
                 pending.erase(pending.begin());
             }
             if (VkCommandBuffer cmd = windowRenderer.beginFrame({0.02f, 0.02f, 0.025f, 1.0f})) {
-                if (gpuMesh) meshRenderer.draw(cmd, *gpuMesh, view.viewProjectionF(), windowRenderer.extent(), drawOptions);
+                if (gpuScene)
+                    meshRenderer.draw(cmd, *gpuScene->mesh, *gpuScene->textures, view.viewProjectionF(),
+                                      windowRenderer.extent(), drawOptions);
                 ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
-                windowRenderer.endFrame(gpuMesh, capture);
+                windowRenderer.endFrame(gpuScene, capture);
                 if (!capture.empty()) {
                     std::printf("screenshot: %s\n", capture.c_str());
                     std::fflush(stdout);
@@ -623,7 +643,7 @@ int runViewer(const ViewerOptions& options) {
         }
         engine.stop();
         windowRenderer.waitIdle();
-        gpuMesh.reset();
+        gpuScene.reset();
     }
     context.reset();  // leaked objects are reported as the device goes
     if (const std::size_t n = *validationMessages; n > 0) {

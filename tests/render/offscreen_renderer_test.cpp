@@ -9,12 +9,16 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "image/Image.h"
+#include "radiosity/Scene.h"
+#include "radiosity/Snapshot.h"
 #include "render/CameraView.h"
+#include "render/GpuTextures.h"
 #include "render/OffscreenRenderer.h"
 #include "render/VulkanContext.h"
-#include "radiosity/Snapshot.h"
 
 namespace rad {
 namespace {
@@ -241,15 +245,16 @@ TEST_F(OffscreenRendererTest, ExposureScalesSurfacesOnTheGpuWithoutReuploading) 
     snapshot.linePositions = {{-0.8f, y, 0.1f}, {0.8f, y, 0.1f}};
     snapshot.lineColors = {kYellow, kYellow};
     const GpuMesh mesh(*context_, snapshot);  // the only upload
+    const GpuTextures textures(*context_, snapshot.textures);
 
     MeshDrawOptions options;
-    const Image ev0 = renderer_->render(mesh, kIdentity, 64, 64, options);
+    const Image ev0 = renderer_->render(mesh, textures, kIdentity, 64, 64, options);
     options.exposure = 1.0;
-    const Image ev1 = renderer_->render(mesh, kIdentity, 64, 64, options);
+    const Image ev1 = renderer_->render(mesh, textures, kIdentity, 64, 64, options);
     options.exposure = -1.0;
-    const Image evMinus1 = renderer_->render(mesh, kIdentity, 64, 64, options);
+    const Image evMinus1 = renderer_->render(mesh, textures, kIdentity, 64, 64, options);
     options.exposure = 0.7;  // not a power of two
-    const Image ev07 = renderer_->render(mesh, kIdentity, 64, 64, options);
+    const Image ev07 = renderer_->render(mesh, textures, kIdentity, 64, 64, options);
 
     const auto [lx, ly] = pixelAt(ev0, -0.5f, -0.5f);
     const auto [rx, ry] = pixelAt(ev0, 0.5f, -0.2f);
@@ -298,6 +303,253 @@ TEST_F(OffscreenRendererTest, SrgbEncodedOutputFollowsThePngEncoder) {
             EXPECT_NEAR(image.pixel(x, 2)[c] * 255.0f, encodeSrgb(linear[c]), 0.51f)
                 << "value " << values[i] << " channel " << c;
     }
+}
+
+// Textured surfaces (GpuTextures, MeshSnapshot::uvs / textureLayer /
+// texelScale): drawn as colour * linear texel * texelScale.
+
+// A texture of width x height texels given as sRGB RGBA8, rows from the top.
+std::shared_ptr<const Texture> makeTexture(std::uint32_t width, std::uint32_t height,
+                                           std::vector<std::uint8_t> srgba,
+                                           const std::string& name = "test") {
+    auto texture = std::make_shared<Texture>();
+    texture->name = name;
+    texture->width = width;
+    texture->height = height;
+    texture->srgba = std::move(srgba);
+    return texture;
+}
+
+// 2x2: black and white on the first row, white and black on the second.
+std::shared_ptr<const Texture> checker2x2() {
+    return makeTexture(2, 2, {0, 0, 0, 255, 255, 255, 255, 255, 255, 255, 255, 255, 0, 0, 0, 255});
+}
+
+// Gives every vertex so far the untextured defaults, so that the three
+// per-vertex vectors stay one per vertex.
+void padTextureVectors(MeshSnapshot& mesh) {
+    const std::size_t n = mesh.positions.size();
+    mesh.uvs.resize(n, glm::vec2(0.0f));
+    mesh.textureLayer.resize(n, -1);
+    mesh.texelScale.resize(n, glm::vec3(1.0f));
+}
+
+// Axis-aligned rectangle at depth z facing the viewer, uv (0, 0) at its top
+// left corner (x0, y0) and uv1 at the bottom right, one texture layer.
+void addTexturedRect(MeshSnapshot& mesh, float x0, float y0, float x1, float y1, float z,
+                     glm::vec3 color, std::int32_t layer, glm::vec2 uv1 = glm::vec2(1.0f),
+                     glm::vec3 texelScale = glm::vec3(1.0f)) {
+    padTextureVectors(mesh);
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    const std::array<glm::vec3, 4> p{{{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}};
+    const std::array<glm::vec2, 4> uv{{{0.0f, 0.0f}, {uv1.x, 0.0f}, uv1, {0.0f, uv1.y}}};
+    for (int i = 0; i < 4; ++i) {
+        mesh.positions.push_back(p[i]);
+        mesh.normals.emplace_back(0, 0, -1);
+        mesh.colors.push_back(color);
+        mesh.uvs.push_back(uv[i]);
+        mesh.textureLayer.push_back(layer);
+        mesh.texelScale.push_back(texelScale);
+    }
+    // Counter-clockwise in framebuffer space (see addFrontTriangle).
+    mesh.indices.insert(mesh.indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
+}
+
+// Mean of channel 0 over the pixels [x0, x1) x [y0, y1).
+float meanRed(const Image& image, int x0, int y0, int x1, int y1) {
+    double sum = 0.0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) sum += image.pixel(x, y)[0];
+    return static_cast<float>(sum / ((x1 - x0) * (y1 - y0)));
+}
+
+// One quad over the whole image, grey 0.5, textured with a 2x2 black and
+// white checker: the quadrants follow the texels (uv (0, 0), the first
+// texel, at the top left). 66 pixels: the centres of pixels 16 and 49 are
+// uv 0.25 and 0.75, the texel centres, where bilinear filtering gives the
+// texel itself.
+TEST_F(OffscreenRendererTest, TexturedQuadShowsTheTexelsWhereTheTextureSaysAndUntexturedIsUniform) {
+    constexpr int kSize = 66;
+    const glm::vec3 grey(0.5f);
+    MeshSnapshot textured;
+    textured.textures = {checker2x2()};
+    addTexturedRect(textured, -1.0f, -1.0f, 1.0f, 1.0f, 0.5f, grey, 0);
+    const Image image = renderer_->render(textured, kIdentity, kSize, kSize);
+
+    expectColor(image, 16, 16, glm::vec3(0.0f), 1e-3f);  // top left: black
+    expectColor(image, 49, 16, grey, 1e-3f);             // top right: white * 0.5
+    expectColor(image, 16, 49, grey, 1e-3f);             // bottom left: white
+    expectColor(image, 49, 49, glm::vec3(0.0f), 1e-3f);  // bottom right: black
+    // Quadrant means: bilinear filtering (repeated at the edges) blends a
+    // quarter of the neighbours in, so black reads 0.375 * 0.5 and white
+    // 0.625 * 0.5 on average.
+    const int h = kSize / 2;
+    const float topLeft = meanRed(image, 0, 0, h, h), topRight = meanRed(image, h, 0, kSize, h);
+    const float bottomLeft = meanRed(image, 0, h, h, kSize);
+    const float bottomRight = meanRed(image, h, h, kSize, kSize);
+    EXPECT_NEAR(topLeft, 0.1875f, 0.01f);
+    EXPECT_NEAR(bottomRight, 0.1875f, 0.01f);
+    EXPECT_NEAR(topRight, 0.3125f, 0.01f);
+    EXPECT_NEAR(bottomLeft, 0.3125f, 0.01f);
+    // Left half against right half of the top and bottom rows of texels.
+    EXPECT_LT(meanRed(image, 0, 0, h, h) + 0.1f, meanRed(image, h, 0, kSize, h));
+    EXPECT_GT(meanRed(image, 0, h, h, kSize), meanRed(image, h, h, kSize, kSize) + 0.1f);
+
+    // The same quad with layer -1 (the vectors given), and with the vectors
+    // empty: the colour alone, every pixel.
+    MeshSnapshot layerNone = textured;
+    std::fill(layerNone.textureLayer.begin(), layerNone.textureLayer.end(), -1);
+    MeshSnapshot vectorsEmpty = textured;
+    vectorsEmpty.uvs.clear();
+    vectorsEmpty.textureLayer.clear();
+    vectorsEmpty.texelScale.clear();
+    for (const MeshSnapshot* mesh : {&layerNone, &vectorsEmpty}) {
+        SCOPED_TRACE(mesh == &layerNone ? "layer -1" : "no texture vectors");
+        const Image uniform = renderer_->render(*mesh, kIdentity, kSize, kSize);
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_EQ(uniform.pixel(x, y)[c], 0.5f) << x << "," << y;
+    }
+}
+
+// The texel is decoded from sRGB (128 reads 0.216, not 0.502) and multiplied
+// by the colour and texelScale, per channel; exposure applies after.
+TEST_F(OffscreenRendererTest, TexelIsLinearTimesColourTimesTexelScale) {
+    MeshSnapshot mesh;
+    mesh.textures = {makeTexture(1, 1, {128, 255, 64, 255})};
+    addTexturedRect(mesh, -1.0f, -1.0f, 1.0f, 1.0f, 0.5f, glm::vec3(0.5f, 0.5f, 1.0f), 0,
+                    glm::vec2(3.0f), glm::vec3(2.0f, 0.5f, 1.0f));
+    MeshDrawOptions options;
+    options.exposure = 1.0;
+    const Image image = renderer_->render(mesh, kIdentity, 16, 16, options);
+    const auto decode = [](double v) { return std::pow((v / 255.0 + 0.055) / 1.055, 2.4); };
+    const glm::vec3 expected(2.0 * 0.5 * decode(128) * 2.0, 2.0 * 0.5 * 1.0 * 0.5,
+                             2.0 * 1.0 * decode(64) * 1.0);
+    expectColor(image, 3, 4, expected, 2e-3f);
+    expectColor(image, 12, 11, expected, 2e-3f);
+}
+
+// Several textures of different sizes share one array: each quad shows its
+// own layer (the 1x1 red one resampled to the checker's 2x2 stays red), and
+// a new snapshot with the same texture list reuses the upload.
+TEST_F(OffscreenRendererTest, EachQuadSamplesItsOwnLayer) {
+    MeshSnapshot mesh;
+    mesh.textures = {checker2x2(), makeTexture(1, 1, {255, 0, 0, 255}, "red")};
+    addTexturedRect(mesh, -1.0f, -1.0f, 0.0f, 1.0f, 0.5f, glm::vec3(1.0f), 1);  // left: red
+    addRect(mesh, 0.0f, -1.0f, 1.0f, 0.0f, 0.5f, kGreen);                       // untextured
+    addTexturedRect(mesh, 0.0f, 0.0f, 1.0f, 1.0f, 0.5f, glm::vec3(1.0f), 0);    // checker
+    padTextureVectors(mesh);
+    const Image image = renderer_->render(mesh, kIdentity, 32, 32);
+    for (auto [x, y] : {std::array<int, 2>{2, 2}, {8, 16}, {13, 30}})
+        expectColor(image, x, y, kRed, 1e-3f);
+    expectColor(image, 24, 8, kGreen);
+    // The checker quad starts at pixel 16 and is 16 wide: the centres of
+    // pixels 19 and 27 are uv 0.22 and 0.72, near the texel centres (the
+    // neighbours weigh 12% there).
+    EXPECT_LT(image.pixel(19, 19)[0], 0.2f);  // black texel
+    EXPECT_GT(image.pixel(27, 19)[0], 0.8f);  // white
+    EXPECT_GT(image.pixel(19, 27)[0], 0.8f);  // white
+    EXPECT_LT(image.pixel(27, 27)[0], 0.2f);  // black
+
+    const GpuTextures textures(*context_, mesh.textures);
+    EXPECT_EQ(textures.layerCount(), 2u);
+    EXPECT_EQ(textures.layerExtent().width, 2u);
+    EXPECT_TRUE(textures.sameSources(mesh.textures));
+    const std::vector<std::shared_ptr<const Texture>> copies{
+        std::make_shared<const Texture>(*mesh.textures[0]), mesh.textures[1]};
+    EXPECT_FALSE(textures.sameSources(copies));  // equal images, other objects: upload again
+    const GpuMesh gpuMesh(*context_, mesh);
+    expectColor(renderer_->render(gpuMesh, textures, kIdentity, 32, 32), 2, 2, kRed, 1e-3f);
+    // No textures at all: one white texel, the descriptor still valid.
+    const GpuTextures none(*context_, {});
+    EXPECT_EQ(none.layerCount(), 1u);
+    MeshSnapshot plain;
+    addRect(plain, -1.0f, -1.0f, 1.0f, 1.0f, 0.5f, kBlue);
+    expectColor(renderer_->render(GpuMesh(*context_, plain), none, kIdentity, 8, 8), 4, 4, kBlue);
+}
+
+// A texture vector not one per vertex, a layer without a texture, or a
+// missing vector is refused, naming what is wrong, before anything is drawn.
+TEST_F(OffscreenRendererTest, TextureVectorsOfTheWrongSizeAreRefused) {
+    MeshSnapshot good;
+    good.textures = {checker2x2()};
+    addTexturedRect(good, -1.0f, -1.0f, 1.0f, 1.0f, 0.5f, glm::vec3(0.5f), 0);
+    const auto expectRefused = [&](const MeshSnapshot& mesh, const std::string& words) {
+        try {
+            GpuMesh gpuMesh(*context_, mesh);
+            ADD_FAILURE() << "no exception; expected one naming " << words;
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+        }
+        EXPECT_THROW(renderer_->render(mesh, kIdentity, 8, 8), std::runtime_error);
+    };
+    MeshSnapshot shortUvs = good;
+    shortUvs.uvs.pop_back();
+    expectRefused(shortUvs, "3 uvs for 4 vertices");
+    MeshSnapshot longScales = good;
+    longScales.texelScale.emplace_back(1.0f);
+    expectRefused(longScales, "5 texel scales for 4 vertices");
+    MeshSnapshot shortLayers = good;
+    shortLayers.textureLayer.resize(1);
+    expectRefused(shortLayers, "1 texture layers for 4 vertices");
+    MeshSnapshot noUvs = good;
+    noUvs.uvs.clear();
+    expectRefused(noUvs, "all be empty or all one per vertex");
+    MeshSnapshot badLayer = good;
+    badLayer.textureLayer[2] = 1;
+    expectRefused(badLayer, "vertex 2 has texture layer 1 of 1 textures");
+    MeshSnapshot noTextures = good;
+    noTextures.textures.clear();
+    expectRefused(noTextures, "texture layer 0 of 0 textures");
+    // And a malformed texture image.
+    MeshSnapshot badImage = good;
+    badImage.textures = {makeTexture(2, 2, {0, 0, 0, 255}, "short")};
+    try {
+        renderer_->render(badImage, kIdentity, 8, 8);
+        ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("texture 0 'short' has 4 bytes, not 2x2x4"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_NO_THROW(renderer_->render(good, kIdentity, 8, 8));
+}
+
+// The CPU side of the upload: one common size (the largest, capped), same
+// sizes copied byte for byte, resampling in linear light.
+TEST(RenderTextureLayers, CommonSizeCopiesOrResamples) {
+    const auto checker = checker2x2();
+    const auto wide =
+        makeTexture(4, 1, {10, 20, 30, 255, 40, 50, 60, 255, 70, 80, 90, 255, 100, 110, 120, 128});
+    const TextureLayers packed = packTextureLayers({checker, wide}, 2048);
+    EXPECT_EQ(packed.width, 4u);
+    EXPECT_EQ(packed.height, 2u);
+    EXPECT_EQ(packed.layers, 2u);
+    ASSERT_EQ(packed.srgba.size(), 4u * 2u * 4u * 2u);
+    // Layer 1 (4x1 -> 4x2): every row the source row.
+    for (int y = 0; y < 2; ++y)
+        for (int i = 0; i < 16; ++i)
+            EXPECT_NEAR(packed.srgba[32 + y * 16 + i], wide->srgba[i], 1)
+                << "row " << y << " byte " << i;
+
+    // A checker shrunk to one texel is mid grey in linear light: sRGB 188.
+    const TextureLayers grey = packTextureLayers({checker}, 1);
+    ASSERT_EQ(grey.srgba.size(), 4u);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(grey.srgba[c], 188) << "channel " << c;
+    EXPECT_EQ(grey.srgba[3], 255);
+
+    // The same size: copied.
+    const TextureLayers same = packTextureLayers({checker, checker}, 2048);
+    EXPECT_EQ(same.width, 2u);
+    for (int i = 0; i < 16; ++i) EXPECT_EQ(same.srgba[16 + i], checker->srgba[i]);
+
+    const TextureLayers white = packTextureLayers({}, 2048);
+    EXPECT_EQ(white.layers, 1u);
+    EXPECT_EQ(white.srgba, (std::vector<std::uint8_t>{255, 255, 255, 255}));
+
+    EXPECT_THROW(packTextureLayers({nullptr}, 2048), std::runtime_error);
+    EXPECT_THROW(packTextureLayers({makeTexture(0, 0, {})}, 2048), std::runtime_error);
 }
 
 TEST(RenderVulkanContext, ValidationLayerCountsMessages) {
