@@ -1046,11 +1046,13 @@ def textured_room():
     sb = SceneBuilder('textured-room')
     mats = office_materials(sb)
     light_tile, dark_tile = (205, 195, 175), (70, 58, 50)
-    floor = sb.texture(sb.material('checker-floor', (0.9, 0.9, 0.9)), 2, 2,
-                       [light_tile, dark_tile, dark_tile, light_tile], 2 * FURNISHED_ROOM_TILE)
+    # 32 texels a tile, so that the viewer's bilinear filtering blurs only the tiles' edges.
+    floor = sb.texture(sb.material('checker-floor', (0.9, 0.9, 0.9)), 64, 64,
+                       [light_tile if (x // 32 + y // 32) % 2 == 0 else dark_tile for y in range(64) for x in range(64)],
+                       2 * FURNISHED_ROOM_TILE)
     stripes = [(190, 40, 35), (235, 190, 60), (40, 90, 170), (230, 225, 215)]
-    hanging = sb.texture(sb.material('hanging', (0.9, 0.9, 0.9)), 8, 2,
-                         [stripes[(x // 2) % 4] for _ in range(2) for x in range(8)], 1.2)
+    hanging = sb.texture(sb.material('hanging', (0.9, 0.9, 0.9)), 64, 16,
+                         [stripes[(x // 16) % 4] for _ in range(16) for x in range(64)], 1.2)
     rng = Rng(612)
     room(sb, '', (0.0, 0.0, 0.0), (6.0, 3.0, 5.0), FURNISHED_ROOM_TILE, (mats['wall'], floor, mats['ceiling']),
          lights=[(1.4, 2.6, 1.3, 1.9)], light_mat=mats['light'])

@@ -163,17 +163,37 @@ Key vertexKey(const MeshSnapshot& mesh, std::uint32_t i, const glm::dvec3& origi
 
 // The smoothed value of the group keyed[a, b): the area-weighted mean of
 // its members' own values, written to each; a single vertex keeps its own.
+// With textures, what is smoothed is the light a vertex shows per unit of
+// texel (colour times texelScale: the irradiance, up to the material's
+// factor), and each vertex takes it back times its own reflectance: tiles
+// of a checkered floor that meet at a seam share their light, not their
+// colour.
 template <class Own, class Weight>
 void smoothGroup(const std::vector<std::pair<Key, std::uint32_t>>& keyed, std::size_t a, std::size_t b,
                  MeshSnapshot& mesh, const Own& own, const Weight& weight) {
-    glm::dvec3 sum(0.0);
-    double w = 0.0;
+    const bool textured = !mesh.texelScale.empty();
+    const auto scale = [&](std::uint32_t i) { return textured ? glm::dvec3(mesh.texelScale[i]) : glm::dvec3(1.0); };
+    // Per channel; a vertex that reflects nothing in a channel (texelScale
+    // 0) says nothing about the light there.
+    glm::dvec3 sum(0.0), w(0.0);
     for (std::size_t k = a; k < b; ++k) {
-        sum += weight(keyed[k].second) * glm::dvec3(own(keyed[k].second));
-        w += weight(keyed[k].second);
+        const std::uint32_t i = keyed[k].second;
+        const glm::dvec3 s = scale(i);
+        for (int c = 0; c < 3; ++c)
+            if (s[c] > 0.0) {
+                sum[c] += weight(i) * own(i)[c] * s[c];
+                w[c] += weight(i);
+            }
     }
-    for (std::size_t k = a; k < b; ++k)
-        mesh.colors[keyed[k].second] = w > 0.0 && b - a > 1 ? glm::vec3(sum / w) : own(keyed[k].second);
+    for (std::size_t k = a; k < b; ++k) {
+        const std::uint32_t i = keyed[k].second;
+        glm::vec3 value = own(i);
+        const glm::dvec3 s = scale(i);
+        if (b - a > 1)
+            for (int c = 0; c < 3; ++c)
+                if (s[c] > 0.0 && w[c] > 0.0) value[c] = static_cast<float>(sum[c] / w[c] / s[c]);
+        mesh.colors[i] = value;
+    }
 }
 
 void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vector<double>& weights,

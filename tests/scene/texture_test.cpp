@@ -104,6 +104,48 @@ TEST(Texture, TheSolutionAndTheSnapshotFollowTheTexture) {
     EXPECT_GT(black, 4);
 }
 
+// Two tiles of one textured material meeting at x = 1, one on white texels,
+// one on mid-grey ones: the seam's vertices show the same light per unit of
+// reflectance on both sides (colour times texelScale), each its own colour.
+TEST(Texture, TilesMeetingAtASeamShareTheirLightNotTheirColour) {
+    test::TempDir dir;
+    GltfBuilder g;
+    const std::string png = test::makePng(4, 1, {{255, 255, 255}, {255, 255, 255}, {128, 128, 128}, {128, 128, 128}});
+    g.images.push_back("{\"uri\":\"data:image/png;base64," + test::base64(png) + "\"}");
+    g.textures.push_back("{\"source\":0}");
+    const int mat = g.addMaterial(
+        "{\"name\":\"Tex\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.8,0.8,1],"
+        "\"baseColorTexture\":{\"index\":0}}}");
+    // Two quads that share no vertex index: two polygons.
+    const std::vector<glm::vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 3, 0}, {0, 3, 0}, {1, 0, 0}, {2, 0, 0}, {2, 3, 0}, {1, 3, 0}};
+    std::vector<glm::vec2> uv;
+    for (const glm::vec3& q : p) uv.emplace_back(q.x / 2.0f, q.y / 3.0f);
+    g.addMesh("T", g.addPositions(p), g.addIndices({0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}), mat, -1, g.addTexCoords(uv));
+    g.addNode("\"name\":\"T\",\"mesh\":0");
+    Scene s = loadGltf(g.writeEmbedded(dir).string());
+    ASSERT_EQ(s.polygons.size(), 2u);
+    PunctualLight bulb;
+    bulb.name = "bulb";
+    bulb.position = glm::dvec3(1.0, 1.5, 1.0);
+    bulb.intensity = glm::dvec3(10.0);
+    s.lights.push_back(bulb);
+    Engine engine(s, EngineSettings{});
+    ASSERT_TRUE(engine.solve().converged);
+    const MeshSnapshot mesh = engine.snapshot();
+    ASSERT_EQ(mesh.texelScale.size(), mesh.positions.size());
+    int seams = 0;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+        for (std::size_t j = i + 1; j < mesh.positions.size(); ++j) {
+            if (mesh.positions[i] != mesh.positions[j] || mesh.positions[i].x != 1.0f) continue;
+            const double a = mesh.colors[i].x * mesh.texelScale[i].x, b = mesh.colors[j].x * mesh.texelScale[j].x;
+            EXPECT_GT(a, 0.0);
+            EXPECT_NEAR(a, b, 1e-5 * a) << "seam vertex at y = " << mesh.positions[i].y;
+            EXPECT_GT(std::abs(mesh.colors[i].x - mesh.colors[j].x), 0.2 * mesh.colors[i].x);  // white and grey
+            ++seams;
+        }
+    EXPECT_GE(seams, 2);
+}
+
 // A textured primitive without texture coordinates: its texture counts as
 // its mean, with a note.
 TEST(Texture, NoCoordinatesMeansTheMean) {
