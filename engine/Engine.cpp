@@ -749,14 +749,11 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         // links carry, in the share of the object's size it has moved (its
         // shadow and its light move with it, all of them once it has moved
         // by its size).
-        stats.estimatedError = s.updater.waitingShare();
-        for (const auto& [object, d] : s.deferred) {
-            const Aabb now = s.scene.objectBounds(object);
-            const double size = glm::length(now.hi - now.lo);
-            const double moved = glm::length(now.center() - d.box.center());
-            if (size > 0.0)
-                stats.estimatedError += std::min(1.0, moved / size) * s.updater.linkShare({s.hierarchy.objectCluster(object)});
-        }
+        std::vector<std::pair<ElementId, double>> shares;
+        for (const auto& [object, d] : s.deferred)
+            shares.emplace_back(s.hierarchy.objectCluster(object),
+                                std::min(1.0, LineSpaceUpdate::motionShare(d.box, s.scene.objectBounds(object))));
+        stats.estimatedError = s.updater.estimatedError(shares);
         stats.pending = s.lightLinks.pendingCount();
         s.buildMesh(stats);  // not a frame of the budget's fit: it has no traversal
         return stats;

@@ -166,6 +166,10 @@ double Refiner::potentialTransfer(const Link& link) const {
     return h_[link.source].oracle * coupling(link, link.unoccluded);
 }
 
+double Refiner::variationBound(const Link& link) const {
+    return std::min(potentialTransfer(link), h_[link.source].oracle * coupling(link, double(link.spread)));
+}
+
 Link Refiner::compute(ElementId s, ElementId r) const {
     Link l = computeUnoccluded(s, r);
     if (l.live) refreshVisibility(l);

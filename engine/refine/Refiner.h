@@ -89,6 +89,11 @@ public:
     // The power the link could carry at full visibility, from the oracle of
     // its source: the quantity BF refinement compares with the threshold.
     double potentialTransfer(const Link& link) const;
+    // How far the link's transfer, as one mean over its receiver, can be
+    // from what finer links would carry: its source's oracle times how much
+    // the point form factor varies across the receiver (at most the
+    // potential transfer). What a link left coarse gets wrong.
+    double variationBound(const Link& link) const;
     // How many links refining this one would create (before dropping those
     // that carry nothing): its cost under a budget.
     std::size_t childCount(const Link& link) const;

@@ -164,7 +164,7 @@ void LineSpaceUpdate::defer(std::size_t index) {
                 if (id >= staleMark_.size()) staleMark_.resize(links_.slots(), 0);
                 if (staleMark_[id]) continue;
                 staleMark_[id] = 1;
-                stale_.push_back(id);
+                stale_.emplace_back(id, motionBefore_);
             }
         for (const Group& g : v.groups) stack.insert(stack.end(), g.visits.begin(), g.visits.end());
     }
@@ -181,7 +181,7 @@ std::size_t LineSpaceUpdate::catchUp(std::size_t budget, FrameStats& stats) {
         batch.clear();
         const std::size_t chunk = budget == kUnlimited ? kDeadlineChunk : std::min(kDeadlineChunk, budget - done);
         while (!stale_.empty() && batch.size() < chunk) {
-            const LinkId id = stale_.front();
+            const LinkId id = stale_.front().first;
             stale_.pop_front();
             if (id < staleMark_.size()) staleMark_[id] = 0;
             if (links_[id].live) batch.push_back(id);

@@ -28,6 +28,10 @@ FrameStats LineSpaceUpdate::update(const std::vector<ObjectMotion>& motions, con
     setDeadline(start, settings);
     ++frame_;
     motions_ = motions;
+    double step = 0.0;
+    for (const ObjectMotion& m : motions) step = std::max(step, motionShare(m.oldBox, m.newBox));
+    motionBefore_ = motion_;
+    motion_ += step;
     layersChanged_ = layersChanged;
     candidates_.clear();
     modified_.clear();
@@ -147,43 +151,89 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     stats.pending = pending_.size();
     stats.stale = stale_.size();
     stats.unsent = unsent_.size() + waiting_.size();
-    stats.estimatedError = waitingShare();
+    stats.estimatedError = estimatedError();
     stats.totalSeconds = secondsSince(start);
 }
 
-double LineSpaceUpdate::waitingShare() const {
-    // Active links only: a p-link's transfer is carried by its children.
-    const auto waitingIn = [&](const auto& ids) {
-        return tbb::parallel_reduce(
-            tbb::blocked_range<std::size_t>(0, ids.size()), 0.0,
-            [&](const tbb::blocked_range<std::size_t>& r, double sum) {
-                for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                    const Link& l = links_[ids[i]];
-                    if (l.live && !l.passive) sum += heapKey(l);
-                }
-                return sum;
-            },
-            std::plus<>());
-    };
-    const double waiting = waitingIn(pending_) + waitingIn(stale_) + unsentPower();
-    const HElement& root = h_[h_.root()];
-    const double power = root.area * luminance(root.radiosity);
-    return power > 0.0 ? waiting / power : 0.0;
+double LineSpaceUpdate::motionShare(const Aabb& from, const Aabb& to) {
+    const double size = glm::length(from.extent());
+    if (!(size > 0.0)) return 0.0;
+    return std::max(glm::length(to.lo - from.lo), glm::length(to.hi - from.hi)) / size;
 }
 
-double LineSpaceUpdate::linkShare(const std::vector<ElementId>& clusters) const {
-    double sum = 0.0;
-    for (ElementId top : clusters)
+double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, double>>& deferred) const {
+    // The power each receiver could still change by: its stale and pending
+    // active links (a p-link's transfer is carried by its children), and
+    // the links with an end in a deferred object's subtree, in the share of
+    // its size it has moved.
+    std::vector<std::pair<ElementId, double>> power;
+    const auto add = [&](const Link& l, double share) {
+        if (l.live && !l.passive) power.emplace_back(l.receiver, share * heapKey(l));
+    };
+    // A link left coarse (pending refinement) carries the right light on
+    // average, wrong by how much it varies across its receiver.
+    const auto addCoarse = [&](const Link& l) {
+        if (l.live && !l.passive) power.emplace_back(l.receiver, refiner_.variationBound(l));
+    };
+    // A stale link could change by its whole transfer once the objects have
+    // moved by their size since it was last right; by that share before.
+    double since = 0.0;
+    for (const auto& d : deferred) since = std::max(since, d.second);
+    for (LinkId id : pending_) addCoarse(links_[id]);
+    for (const auto& [id, at] : stale_) add(links_[id], std::min(1.0, motion_ + since - at));
+    for (const auto& [top, share] : deferred)
         for (std::vector<ElementId> stack{top}; !stack.empty();) {
             const HElement& e = h_[stack.back()];
             stack.pop_back();
-            for (LinkId id : e.links) sum += heapKey(links_[id]);
-            for (LinkId id : e.outLinks) sum += heapKey(links_[id]);
+            for (LinkId id : e.links) add(links_[id], share);
+            for (LinkId id : e.outLinks) add(links_[id], share);
             for (ElementId c : e.children) stack.push_back(c);
         }
     const HElement& root = h_[h_.root()];
-    const double power = root.area * luminance(root.radiosity);
-    return power > 0.0 ? sum / power : 0.0;
+    const double area = root.area, total = area * luminance(root.radiosity);
+    if (!(total > 0.0)) return 0.0;
+    // The scene's mean reflectance, for receivers that are clusters and for
+    // the unsent power, which spreads over everything its senders see.
+    double rhoArea = 0.0;
+    for (std::uint32_t p = 0; p < h_.polygonCount(); ++p)
+        if (const ElementId e = h_.polygonElement(p); e != kNone) rhoArea += h_[e].area * luminance(h_[e].reflectance);
+    const double rhoMean = area > 0.0 ? rhoArea / area : 0.0;
+    // In the units of SolutionError::rms: a receiver r whose irradiance is
+    // off by P_r / A_r has its radiosity off by rho_r P_r / A_r over its area
+    // A_r, so the area-weighted mean square is sum (rho_r P_r)^2 / A_r over
+    // the scene's area. A change gathered in one place (a shadow) weighs
+    // more than the same power spread over the scene, as in the measure.
+    std::sort(power.begin(), power.end());
+    double squares = 0.0;
+    for (std::size_t i = 0; i < power.size();) {
+        const ElementId r = power[i].first;
+        double p = 0.0;
+        for (; i < power.size() && power[i].first == r; ++i) p += power[i].second;
+        const HElement& e = h_[r];
+        const double rho = e.isSurface() ? luminance(e.reflectance) : rhoMean;
+        if (e.area > 0.0) squares += (rho * p) * (rho * p) / e.area;
+    }
+    // Receivers waiting for a push are off by what they gathered since
+    // (times their reflectance), over their own area.
+    for (ElementId e : waiting_)
+        if (e < waitingChange_.size() && waitingChange_[e] > 0.0) squares += waitingChange_[e] * waitingChange_[e] * h_[e].area;
+    // What unsent elements have yet to send spreads over what they see: a
+    // moving shadow's darker and lighter parts send changes of opposite
+    // signs that cancel there, so their sum counts, spread over the scene.
+    double unsent = 0.0;
+    for (ElementId e : unsent_) {
+        const HElement& el = h_[e];
+        if (el.outLinks.empty()) continue;
+        if (el.shape == kNone) {
+            unsent += luminance(el.radiosity - el.gathered) * el.area;
+        } else {
+            const ClusterShape& shape = h_.shape(e);
+            for (int k = 0; k < shape.facetCount; ++k) unsent += luminance(shape.power[k] - shape.gathered[k]);
+        }
+    }
+    unsent *= rhoMean;
+    squares += unsent * unsent / area;
+    return std::sqrt(squares * area) / total;
 }
 
 std::size_t LineSpaceUpdate::budgetLeft(std::size_t budget, std::size_t spent) {

@@ -91,13 +91,16 @@ public:
     };
     void setFrameTail(const FrameTail& tail) { tail_ = tail; }
 
-    // The live error estimate of what waits (stale and pending links,
-    // unsent elements), as FrameStats::estimatedError.
-    double waitingShare() const;
-    // The potential transfer of the active links with an end in the given
-    // clusters' subtrees, in the same units: what a deferred move of them
-    // could change at least (the light they send and receive).
-    double linkShare(const std::vector<ElementId>& clusters) const;
+    // The live error estimate (FrameStats::estimatedError), in the units of
+    // SolutionError::rms: what the stale and pending links and the unsent
+    // elements could change, receiver by receiver, and for each deferred
+    // (cluster, share) the links with an end in the cluster's subtree in
+    // that share (a deferred move: the light its links carry, in the share
+    // of its size the object has moved).
+    double estimatedError(const std::vector<std::pair<ElementId, double>>& deferred = {}) const;
+    // How far a move took an object, in its size: the larger distance its
+    // box's corners moved over the box's diagonal (a turn moves them too).
+    static double motionShare(const Aabb& from, const Aabb& to);
 
     // What the last frame touched, for display (paper Fig. 5 b, c): the links
     // it modified (the centres of their two H-elements) and the surface
@@ -249,7 +252,11 @@ private:
     std::vector<LinkId> pending_;
     // Links a budget left with the transfers of an earlier position, in the
     // order deferred; marked so that none is queued twice.
-    std::deque<LinkId> stale_;
+    // With each, the motion clock when it was last right.
+    std::deque<std::pair<LinkId, double>> stale_;
+    // The motion clock: the sum over moves of the largest motionShare of the
+    // objects moved; and its value before the last move.
+    double motion_ = 0.0, motionBefore_ = 0.0;
     std::vector<std::uint8_t> staleMark_;
     std::vector<Visit> visits_;
     std::vector<LinkId> doomed_;  // removeLineSpaceChildren's, kept to spare an allocation per node

@@ -301,6 +301,34 @@ TEST(StabilityControlledUpdate, MovesWithoutTimeForTheTraversalWaitAndCoalesce) 
     EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
 }
 
+// The live estimate is in the units of the measured error (the rms
+// against a solution whose links are all up to date) and follows it: a
+// block dragged with budget 0 leaves more light wrong frame after frame,
+// and the estimate grows with it, from the links it left stale, each in
+// the share of the block's size the block has moved since the link was
+// last right.
+TEST(StabilityControlledUpdate, EstimatedErrorFollowsTheMeasuredOneInItsUnits) {
+    Engine starved(roomWithBlock(), coarse());
+    Engine free(roomWithBlock(), coarse());
+    ASSERT_TRUE(starved.solve().converged);
+    ASSERT_TRUE(free.solve().converged);
+    UpdateSettings none;
+    none.budget = 0;
+    double lastEstimate = 0.0, lastMeasured = 0.0;
+    for (int frame = 1; frame <= 5; ++frame) {
+        const glm::dmat4 m = translation(V(0.08 * frame, 0.0, 0.04 * frame));
+        const FrameStats f = starved.moveDynamicObject(m, none);
+        free.moveDynamicObject(m);
+        const double measured = compareSamples(starved.samples(), free.samples()).rms;
+        EXPECT_GT(f.estimatedError, lastEstimate) << "frame " << frame;
+        EXPECT_GT(measured, lastMeasured) << "frame " << frame;
+        EXPECT_GT(f.estimatedError, 0.2 * measured) << "frame " << frame;
+        EXPECT_LT(f.estimatedError, 5.0 * measured) << "frame " << frame;
+        lastEstimate = f.estimatedError;
+        lastMeasured = measured;
+    }
+}
+
 TEST(StabilityControlledUpdate, BudgetFromTargetFrameRate) {
     Engine engine(roomWithBlock(), coarse());
     ASSERT_TRUE(engine.solve().converged);
