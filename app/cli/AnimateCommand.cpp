@@ -72,6 +72,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
         {"deferred", st.deferred},
         {"estimated_error", st.estimatedError},
         {"changed_elements", st.changedElements},
+        {"changed_leaves", st.changedLeaves},
         {"bounces", st.bounces},
         {"links", st.links},
         {"elements", st.elements},

@@ -263,7 +263,22 @@ void LineSpaceUpdate::startLinkUpdates() {
 std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats) {
     std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
     stats.changedElements += visited.size();
-    for (ElementId e : visited) stats.changedLeaves += h_[e].isSurface() && h_[e].children.empty();
+    // The snapshot meshes again every polygon with a changed leaf, all of
+    // its leaves: that, counted once a frame, is what its time follows.
+    if (polygonStamp_.size() < h_.polygonCount()) polygonStamp_.resize(h_.polygonCount(), 0);
+    for (ElementId e : visited) {
+        const HElement& el = h_[e];
+        if (!el.isSurface() || !el.children.empty() || el.polygon == kNone) continue;
+        if (std::exchange(polygonStamp_[el.polygon], frame_) == frame_) continue;
+        std::size_t leaves = 0;
+        for (std::vector<ElementId> stack{h_.polygonElement(el.polygon)}; !stack.empty();) {
+            const HElement& q = h_[stack.back()];
+            stack.pop_back();
+            leaves += q.children.empty();
+            stack.insert(stack.end(), q.children.begin(), q.children.end());
+        }
+        stats.changedLeaves += leaves;
+    }
     return visited;
 }
 

@@ -212,6 +212,7 @@ private:
     std::vector<Aabb> obstacles_;
     bool layersChanged_ = false;
     std::uint32_t frame_ = 0;
+    std::vector<std::uint32_t> polygonStamp_;  // the frame that last counted a polygon's leaves (pushPull)
     // Frame in which a link became a candidate (written by concurrent visits:
     // each stamps only its own links).
     std::vector<std::uint32_t> linkStamp_;

@@ -43,11 +43,15 @@ TEST(CliAnimate, ReportsEveryFrameAndMatchesAFullSolve) {
             EXPECT_GE(jsonAt(frame, key), 0.0) << key << " frame " << f;
         }
         for (const char* key : {"/shaft_tests", "/candidates", "/links_updated", "/reinstated", "/refined",
-                                "/changed_elements", "/links", "/elements", "/spent", "/pending"}) {
+                                "/changed_elements", "/changed_leaves", "/links", "/elements", "/spent", "/pending"}) {
             EXPECT_TRUE(jsonAt(frame, key).is_number_integer()) << key << " frame " << f;
             EXPECT_GE(jsonAt(frame, key), 0) << key << " frame " << f;
         }
         EXPECT_GT(jsonAt(frame, "/candidates"), 0) << "frame " << f;
+        // A frame that changed elements meshes their polygons again.
+        if (jsonAt(frame, "/changed_elements") > 0) {
+            EXPECT_GT(jsonAt(frame, "/changed_leaves"), 0) << "frame " << f;
+        }
         // Neither a budget nor a target frame rate was asked for.
         EXPECT_TRUE(jsonAt(frame, "/budget").is_null()) << "frame " << f;
         EXPECT_TRUE(jsonAt(frame, "/target_seconds").is_null()) << "frame " << f;

@@ -93,7 +93,7 @@ struct FrameStats {
     std::size_t reinstated = 0;
     std::size_t refined = 0;
     std::size_t changedElements = 0;  // visited by the partial push-pull
-    std::size_t changedLeaves = 0;    // of which surface leaves (their polygons are meshed again)
+    std::size_t changedLeaves = 0;    // the leaves of the polygons with a changed leaf (meshed again), once each
     std::size_t budget = 0;            // link updates allowed (kUnlimited: no limit)
     std::size_t budgetReinstated = 0;  // p-links reinstated for lack of budget
     std::size_t pending = 0;           // links left coarser than the criterion asks (and polygons' light links)
