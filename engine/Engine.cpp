@@ -127,9 +127,17 @@ struct Engine::State {
 
     // The lit mesh a frame ends with: the viewer draws it, so building it is
     // part of the frame's time. Valid until the solution changes again.
-    void buildMesh(FrameStats& f) {
+    // On a deadline (the frame's, f.totalSeconds of it spent), polygons are
+    // meshed again only until the time the assembly needs is left; the
+    // others keep their last mesh for a later frame (FrameStats::unmeshed).
+    void buildMesh(FrameStats& f, std::optional<double> deadlineSeconds = std::nullopt) {
         const auto start = std::chrono::steady_clock::now();
-        makeRadiositySnapshot(scene, hierarchy, mesh, meshParts);
+        std::optional<std::chrono::steady_clock::time_point> stop;
+        if (deadlineSeconds) {
+            const double left = std::max(0.0, *deadlineSeconds - f.totalSeconds - meshCost.model().first);
+            stop = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(left));
+        }
+        f.unmeshed = makeRadiositySnapshot(scene, hierarchy, mesh, meshParts, stop);
         meshValid = true;
         f.snapshotSeconds = secondsSince(start);
         f.totalSeconds += f.snapshotSeconds;
@@ -755,7 +763,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
                                 std::min(1.0, LineSpaceUpdate::motionShare(d.box, s.scene.objectBounds(object))));
         stats.estimatedError = s.updater.estimatedError(shares);
         stats.pending = s.lightLinks.pendingCount();
-        s.buildMesh(stats);  // not a frame of the budget's fit: it has no traversal
+        s.buildMesh(stats, settings.deadlineSeconds);  // not a frame of the budget's fit: it has no traversal
         return stats;
     }
     std::vector<ObjectMotion> motions;
@@ -774,7 +782,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     stats.totalSeconds += moveSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();
     stats.updateSeconds += choosingSeconds;
-    s.buildMesh(stats);
+    s.buildMesh(stats, settings.deadlineSeconds);
     s.budget.record(stats.spent, stats.totalSeconds);
     return stats;
 }
@@ -807,7 +815,7 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
         s.hierarchy.compact();
         s.links.compact();
     }
-    s.buildMesh(f);
+    s.buildMesh(f, settings.deadlineSeconds);
     return f;
 }
 
@@ -913,7 +921,7 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     s.setOracles();
     s.updater.judgeAgain(inner, stats);
     anchorOracles(s.hierarchy);
-    s.buildMesh(stats);
+    s.buildMesh(stats, settings.deadlineSeconds);
     return stats;
 }
 

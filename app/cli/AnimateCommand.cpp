@@ -70,6 +70,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
         {"stale", st.stale},
         {"unsent", st.unsent},
         {"deferred", st.deferred},
+        {"unmeshed", st.unmeshed},
         {"estimated_error", st.estimatedError},
         {"changed_elements", st.changedElements},
         {"changed_leaves", st.changedLeaves},

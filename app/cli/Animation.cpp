@@ -49,6 +49,7 @@ void addFrame(FrameStats& into, const FrameStats& more) {
     into.pending = more.pending;
     into.stale = more.stale;
     into.unsent = more.unsent;
+    into.unmeshed = more.unmeshed;
     // An edit after a deferred move leaves the move deferred: what it
     // estimated stands.
     into.estimatedError = std::max(into.estimatedError, more.estimatedError);

@@ -369,21 +369,22 @@ void EngineThread::run() {
         std::deque<Command> commands;
         {
             std::unique_lock lock(queueMutex_);
-            const bool behind = w.engine && w.frame.pending + w.frame.stale + w.frame.unsent + w.frame.deferred > 0;
+            const bool behind =
+                w.engine && w.frame.pending + w.frame.stale + w.frame.unsent + w.frame.deferred + w.frame.unmeshed > 0;
             if (queue_.empty() && !behind) queueCv_.wait(lock, [&] { return !queue_.empty(); });
             commands.swap(queue_);
         }
         if (commands.empty()) {  // idle: update what earlier frames left stale, coarse or unsent
-            const std::size_t before = w.frame.pending + w.frame.stale;
+            const std::size_t before = w.frame.pending + w.frame.stale + w.frame.unmeshed;
             try {
                 w.frame = w.engine->refinePending(w.update(true));
             } catch (const std::exception& e) {
                 w.selectionNote = e.what();
-                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = 0;
+                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = w.frame.unmeshed = 0;
             }
-            if (w.frame.pending + w.frame.stale >= before && w.frame.spent == 0 && w.frame.bounces == 0 &&
-                w.frame.shaftTests == 0)
-                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = 0;  // no progress: stop
+            if (w.frame.pending + w.frame.stale + w.frame.unmeshed >= before && w.frame.spent == 0 &&
+                w.frame.bounces == 0 && w.frame.shaftTests == 0)
+                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = w.frame.unmeshed = 0;  // no progress: stop
             publish(true);
             continue;
         }

@@ -1,6 +1,7 @@
 #include "snapshot/RadiositySnapshot.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -252,26 +253,164 @@ void copyTexturing(const MeshSnapshot& part, MeshSnapshot& mesh, std::size_t off
     std::copy(part.texelScale.begin(), part.texelScale.end(), mesh.texelScale.begin() + at);
 }
 
-// The re-meshed parts written over their old places, when each kept its
-// vertex and index counts; false (nothing written) otherwise. The smoothing
-// groups any of their outline vertices were in or are in now are summed
-// again from the parts' own values, in key order as a full build sums them.
-bool patchInPlace(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint8_t>& remeshed) {
+// Which part each mesh vertex belongs to, from the parts' places.
+void numberVertices(SnapshotCache& cache) {
+    const std::size_t parts = cache.vertexAt.size() - 1;
+    cache.partOfVertex.resize(cache.vertexAt.back());
+    tbb::parallel_for(std::size_t(0), parts, [&](std::size_t p) {
+        std::fill(cache.partOfVertex.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p]),
+                  cache.partOfVertex.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p + 1]), static_cast<std::uint32_t>(p));
+    });
+}
+
+// The mesh moved to a new layout where re-meshed parts changed their vertex
+// or index counts: every part at its new place, the unchanged ones copied
+// from the mesh as it was (their smoothed values), their indices and their
+// sorted keys shifted by how far their part moved. The order of the keys is
+// kept: vertices stay in part order, and within a part in their order.
+void relayout(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint8_t>& remeshed) {
+    const std::size_t polygons = cache.parts.size();
+    std::vector<std::size_t> vertexAt(polygons + 1, 0), indexAt(polygons + 1, 0);
+    for (std::size_t p = 0; p < polygons; ++p) {
+        const bool mine = remeshed[p] != 0;
+        vertexAt[p + 1] = vertexAt[p] + (mine ? cache.parts[p].mesh.positions.size() : cache.vertexAt[p + 1] - cache.vertexAt[p]);
+        indexAt[p + 1] = indexAt[p] + (mine ? cache.parts[p].mesh.indices.size() : cache.indexAt[p + 1] - cache.indexAt[p]);
+    }
+    MeshSnapshot out;
+    for (std::vector<glm::vec3>* v : {&out.positions, &out.normals, &out.colors}) v->resize(vertexAt[polygons]);
+    const bool textured = !mesh.uvs.empty();
+    if (textured) {
+        out.uvs.resize(vertexAt[polygons]);
+        out.textureLayer.resize(vertexAt[polygons]);
+        out.texelScale.resize(vertexAt[polygons]);
+    }
+    out.indices.resize(indexAt[polygons]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polygons, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t p = r.begin(); p < r.end(); ++p) {
+            const auto to = static_cast<std::ptrdiff_t>(vertexAt[p]);
+            if (remeshed[p]) {
+                const MeshSnapshot& part = cache.parts[p].mesh;
+                std::copy(part.positions.begin(), part.positions.end(), out.positions.begin() + to);
+                std::copy(part.normals.begin(), part.normals.end(), out.normals.begin() + to);
+                std::copy(part.colors.begin(), part.colors.end(), out.colors.begin() + to);
+                copyTexturing(part, out, vertexAt[p]);
+                for (std::size_t i = 0; i < part.indices.size(); ++i)
+                    out.indices[indexAt[p] + i] = part.indices[i] + static_cast<std::uint32_t>(vertexAt[p]);
+                continue;
+            }
+            const auto from = static_cast<std::ptrdiff_t>(cache.vertexAt[p]);
+            const auto n = static_cast<std::ptrdiff_t>(cache.vertexAt[p + 1] - cache.vertexAt[p]);
+            std::copy(mesh.positions.begin() + from, mesh.positions.begin() + from + n, out.positions.begin() + to);
+            std::copy(mesh.normals.begin() + from, mesh.normals.begin() + from + n, out.normals.begin() + to);
+            std::copy(mesh.colors.begin() + from, mesh.colors.begin() + from + n, out.colors.begin() + to);
+            if (textured) {
+                std::copy(mesh.uvs.begin() + from, mesh.uvs.begin() + from + n, out.uvs.begin() + to);
+                std::copy(mesh.textureLayer.begin() + from, mesh.textureLayer.begin() + from + n, out.textureLayer.begin() + to);
+                std::copy(mesh.texelScale.begin() + from, mesh.texelScale.begin() + from + n, out.texelScale.begin() + to);
+            }
+            const auto shift = static_cast<std::int64_t>(vertexAt[p]) - static_cast<std::int64_t>(cache.vertexAt[p]);
+            for (std::size_t i = cache.indexAt[p]; i < cache.indexAt[p + 1]; ++i)
+                out.indices[indexAt[p] + (i - cache.indexAt[p])] = static_cast<std::uint32_t>(mesh.indices[i] + shift);
+        }
+    });
+    // The keys of the unchanged parts, shifted; those of the re-meshed ones
+    // go (patch() puts them back under their new keys).
+    const std::vector<std::size_t>& oldAt = cache.vertexAt;
+    std::vector<std::pair<Key, std::uint32_t>> keyed;
+    keyed.reserve(cache.keyed.size());
+    for (const auto& [key, v] : cache.keyed) {
+        const std::size_t p = cache.partOfVertex[v];
+        if (!remeshed[p]) keyed.emplace_back(key, static_cast<std::uint32_t>(v - oldAt[p] + vertexAt[p]));
+    }
+    cache.keyed.swap(keyed);
+    out.textures = std::move(mesh.textures);
+    mesh.positions.swap(out.positions);
+    mesh.normals.swap(out.normals);
+    mesh.colors.swap(out.colors);
+    mesh.uvs.swap(out.uvs);
+    mesh.textureLayer.swap(out.textureLayer);
+    mesh.texelScale.swap(out.texelScale);
+    mesh.indices.swap(out.indices);
+    mesh.textures = std::move(out.textures);
+    cache.vertexAt = std::move(vertexAt);
+    cache.indexAt = std::move(indexAt);
+    cache.vertices = mesh.positions.size();
+    cache.indices = mesh.indices.size();
+    numberVertices(cache);
+}
+
+// The re-meshed parts written over their places (moved to a new layout
+// first when their sizes changed). The smoothing groups any of their outline
+// vertices were in or are in now are summed again from the parts' own
+// values, in key order as a full build sums them.
+void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint8_t>& remeshed) {
     std::vector<std::size_t> changed;
+    bool resized = false;
     for (std::size_t p = 0; p < remeshed.size(); ++p) {
         if (!remeshed[p]) continue;
         const SnapshotCache::Part& part = cache.parts[p];
-        if (part.mesh.positions.size() != cache.vertexAt[p + 1] - cache.vertexAt[p] ||
-            part.mesh.indices.size() != cache.indexAt[p + 1] - cache.indexAt[p])
-            return false;
+        resized = resized || part.mesh.positions.size() != cache.vertexAt[p + 1] - cache.vertexAt[p] ||
+                  part.mesh.indices.size() != cache.indexAt[p + 1] - cache.indexAt[p];
         changed.push_back(p);
     }
-    if (changed.empty()) return true;
+    if (changed.empty()) return;
+    // Parts meshed again with their vertices where they were (new light
+    // only, the common case): the sorted keys stand as they are.
+    bool placesKept = !resized;
+    for (std::size_t c = 0; placesKept && c < changed.size(); ++c) {
+        const std::size_t p = changed[c];
+        const MeshSnapshot& part = cache.parts[p].mesh;
+        placesKept = std::equal(part.positions.begin(), part.positions.end(),
+                                mesh.positions.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p])) &&
+                     std::equal(part.normals.begin(), part.normals.end(),
+                                mesh.normals.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p])) &&
+                     std::equal(part.indices.begin(), part.indices.end(),
+                                mesh.indices.begin() + static_cast<std::ptrdiff_t>(cache.indexAt[p]),
+                                [&](std::uint32_t local, std::uint32_t global) {
+                                    return std::size_t(local) + cache.vertexAt[p] == std::size_t(global);
+                                });
+    }
+    // The keys the re-meshed parts' outline vertices had: their groups are
+    // summed again.
+    std::vector<Key> touched;
+    if (placesKept) {
+        tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
+            const std::size_t p = changed[c];
+            const SnapshotCache::Part& part = cache.parts[p];
+            const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
+            std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
+            copyTexturing(part.mesh, mesh, offset);
+        });
+        for (std::size_t p : changed)
+            for (std::uint32_t local : cache.parts[p].outline)
+                touched.push_back(vertexKey(mesh, static_cast<std::uint32_t>(cache.vertexAt[p] + local), cache.keyOrigin, cache.keyCell));
+    } else {
+        const auto mine = [&](std::uint32_t v) { return remeshed[cache.partOfVertex[v]] != 0; };
+        if (resized) {
+            for (const auto& entry : cache.keyed)
+                if (mine(entry.second)) touched.push_back(entry.first);
+            relayout(mesh, cache, remeshed);  // drops their keys and shifts the others
+        } else {
+            std::erase_if(cache.keyed, [&](const std::pair<Key, std::uint32_t>& entry) {
+                if (!mine(entry.second)) return false;
+                touched.push_back(entry.first);
+                return true;
+            });
+            tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
+                const std::size_t p = changed[c];
+                const SnapshotCache::Part& part = cache.parts[p];
+                const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
+                std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
+                std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
+                std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
+                copyTexturing(part.mesh, mesh, offset);
+                for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
+                    mesh.indices[cache.indexAt[p] + i] = part.mesh.indices[i] + offset;
+            });
+        }
+    }
     // The part a mesh vertex belongs to, and its own (unsmoothed) value and weight.
-    const auto partOf = [&](std::uint32_t v) {
-        return static_cast<std::size_t>(std::upper_bound(cache.vertexAt.begin(), cache.vertexAt.end(), std::size_t(v)) -
-                                        cache.vertexAt.begin() - 1);
-    };
+    const auto partOf = [&](std::uint32_t v) { return std::size_t(cache.partOfVertex[v]); };
     const auto own = [&](std::uint32_t v) {
         const std::size_t p = partOf(v);
         return cache.parts[p].mesh.colors[v - cache.vertexAt[p]];
@@ -280,52 +419,32 @@ bool patchInPlace(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<st
         const std::size_t p = partOf(v);
         return cache.parts[p].weights[v - cache.vertexAt[p]];
     };
-    tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
-        const std::size_t p = changed[c];
-        const SnapshotCache::Part& part = cache.parts[p];
-        const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
-        std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
-        std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
-        std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
-        copyTexturing(part.mesh, mesh, offset);
-        for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
-            mesh.indices[cache.indexAt[p] + i] = part.mesh.indices[i] + offset;
-    });
-    // Their outline vertices leave the sorted keys and come back under their
-    // new keys (a mark per mesh vertex: the keys are many, the parts few).
-    std::vector<std::uint8_t> moved(cache.vertices, 0);
-    for (std::size_t p : changed)
-        std::fill(moved.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p]),
-                  moved.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p + 1]), std::uint8_t(1));
-    std::vector<Key> touched;
-    std::vector<std::pair<Key, std::uint32_t>> kept, fresh;
-    kept.reserve(cache.keyed.size());
-    for (const auto& entry : cache.keyed) {
-        if (moved[entry.second])
-            touched.push_back(entry.first);
-        else
-            kept.push_back(entry);
+    // The re-meshed parts' outline vertices, under their new keys.
+    if (!placesKept) {
+        std::vector<std::pair<Key, std::uint32_t>> fresh;
+        for (std::size_t p : changed)
+            for (std::uint32_t local : cache.parts[p].outline) {
+                const auto v = static_cast<std::uint32_t>(cache.vertexAt[p] + local);
+                fresh.push_back({vertexKey(mesh, v, cache.keyOrigin, cache.keyCell), v});
+                touched.push_back(fresh.back().first);
+            }
+        std::sort(fresh.begin(), fresh.end());
+        const auto middle = static_cast<std::ptrdiff_t>(cache.keyed.size());
+        cache.keyed.insert(cache.keyed.end(), fresh.begin(), fresh.end());
+        std::inplace_merge(cache.keyed.begin(), cache.keyed.begin() + middle, cache.keyed.end());
     }
-    for (std::size_t p : changed)
-        for (std::uint32_t local : cache.parts[p].outline) {
-            const auto v = static_cast<std::uint32_t>(cache.vertexAt[p] + local);
-            fresh.push_back({vertexKey(mesh, v, cache.keyOrigin, cache.keyCell), v});
-            touched.push_back(fresh.back().first);
-        }
-    std::sort(fresh.begin(), fresh.end());
-    cache.keyed.clear();
-    std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), std::back_inserter(cache.keyed));
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    // One walk along both sorted lists, not a binary search per key: the
+    // keys are many, and a search misses the cache at every step.
+    std::size_t a = 0;
     for (const Key& key : touched) {
-        const auto lo = std::lower_bound(cache.keyed.begin(), cache.keyed.end(), key,
-                                         [](const auto& e, const Key& k) { return e.first < k; });
-        auto hi = lo;
-        while (hi != cache.keyed.end() && hi->first == key) ++hi;
-        smoothGroup(cache.keyed, std::size_t(lo - cache.keyed.begin()), std::size_t(hi - cache.keyed.begin()), mesh, own,
-                    weight);
+        while (a < cache.keyed.size() && cache.keyed[a].first < key) ++a;
+        std::size_t b = a;
+        while (b < cache.keyed.size() && cache.keyed[b].first == key) ++b;
+        smoothGroup(cache.keyed, a, b, mesh, own, weight);
+        a = b;
     }
-    return true;
 }
 
 }  // namespace
@@ -337,13 +456,15 @@ MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarch
     return mesh;
 }
 
-void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh, SnapshotCache& cache) {
+std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh, SnapshotCache& cache,
+                                  std::optional<std::chrono::steady_clock::time_point> stop) {
     // Polygons are meshed independently, on all cores; a polygon whose
     // signature is unchanged keeps its part. The parts are joined in polygon
     // order (the same mesh as one core makes from scratch).
     const std::size_t polygons = scene.polygons.size();
     cache.parts.resize(polygons);
     std::vector<std::uint8_t> remeshed(polygons, 0);
+    std::atomic<std::size_t> meshed{0}, left{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polygons, 16), [&](const tbb::blocked_range<std::size_t>& r) {
         Scratch scratch;
         for (std::size_t p = r.begin(); p < r.end(); ++p) {
@@ -351,6 +472,18 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
             const ElementId top = hierarchy.polygonElement(static_cast<std::uint32_t>(p));
             const std::uint64_t signature = top == kNone ? 0 : polygonSignature(hierarchy, top, scratch.leaves);
             if (part.valid && part.signature == signature) continue;
+            // Past the stop, a polygon already meshed once waits for a later
+            // frame (at least kLeastRemeshed a call go ahead: progress).
+            const std::size_t sofar = meshed.load(std::memory_order_relaxed);
+            if (stop && part.valid && sofar >= kLeastRemeshed &&
+                std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(double(sofar) * cache.patchSecondsPerPart)) >
+                    *stop) {
+                left.fetch_add(1, std::memory_order_relaxed);
+                continue;
+            }
+            meshed.fetch_add(1, std::memory_order_relaxed);
             for (std::vector<glm::vec3>* v : {&part.mesh.positions, &part.mesh.normals, &part.mesh.colors, &part.mesh.texelScale})
                 v->clear();
             part.mesh.uvs.clear();
@@ -374,7 +507,15 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
                       mesh.indices.size() == cache.indices && mesh.linePositions.empty() &&
                       cache.vertexAt.size() == polygons + 1 && box.lo == cache.keyOrigin &&
                       keyCellOf(box) == cache.keyCell;
-    if (same && patchInPlace(mesh, cache, remeshed)) return;
+    if (same) {
+        const auto patchStart = std::chrono::steady_clock::now();
+        patch(mesh, cache, remeshed);
+        if (const std::size_t n = meshed.load(); n >= kLeastRemeshed) {
+            const double per = std::chrono::duration<double>(std::chrono::steady_clock::now() - patchStart).count() / double(n);
+            cache.patchSecondsPerPart = 0.5 * (cache.patchSecondsPerPart + per);
+        }
+        return left.load();
+    }
     // Each part's place in the mesh, then the parts copied on all cores.
     std::vector<std::size_t> vertexAt(polygons + 1, 0), indexAt(polygons + 1, 0), outlineAt(polygons + 1, 0);
     for (std::size_t p = 0; p < polygons; ++p) {
@@ -413,6 +554,8 @@ void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshS
     cache.indices = mesh.indices.size();
     cache.vertexAt = std::move(vertexAt);
     cache.indexAt = std::move(indexAt);
+    numberVertices(cache);
+    return left.load();
 }
 
 }  // namespace rad

@@ -1,5 +1,9 @@
 #pragma once
 
+#include <chrono>
+#include <cstddef>
+#include <optional>
+
 #include "hierarchy/Hierarchy.h"
 #include "radiosity/Scene.h"
 #include "radiosity/Snapshot.h"
@@ -37,6 +41,10 @@ struct SnapshotCache {
     bool assembled = false;
     std::size_t vertices = 0, indices = 0;
     std::vector<std::size_t> vertexAt, indexAt;  // per part, and the total last
+    std::vector<std::uint32_t> partOfVertex;    // per mesh vertex: its part (a table, not a search per look)
+    // What writing a re-meshed part into the mesh costs (its seams smoothed
+    // again), measured: a build with a stop leaves that time for them.
+    double patchSecondsPerPart = 2e-6;
     struct Key {
         std::int64_t x, y, z, nx, ny, nz;
         auto operator<=>(const Key&) const = default;
@@ -46,7 +54,13 @@ struct SnapshotCache {
     double keyCell = 0.0;
 };
 
-// The same into `mesh`, reusing its memory and the parts in `cache`.
-void makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh, SnapshotCache& cache);
+// The same into `mesh`, reusing its memory and the parts in `cache`. With
+// `stop`: once that time has passed, polygons whose signature changed keep
+// their last mesh (they are drawn with their last light) rather than being
+// meshed again, but never before kLeastRemeshed of them were; a later call
+// meshes them. Returns how many polygons it left so.
+inline constexpr std::size_t kLeastRemeshed = 32;
+std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh, SnapshotCache& cache,
+                                  std::optional<std::chrono::steady_clock::time_point> stop = std::nullopt);
 
 }  // namespace rad

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "hierarchy/Hierarchy.h"
 #include "snapshot/RadiositySnapshot.h"
 #include "support/TestScenes.h"
@@ -88,6 +90,61 @@ TEST(RadiositySnapshot, CachedPartsGiveTheMeshMadeFromScratch) {
     h.updateGeometry(h.polygonElement(moved));
     expectSame("a polygon moved");
     expectSame("nothing changed");
+}
+
+// A wall of 10 x 10 tiles meeting edge to edge (their seams smoothed): the
+// cached mesh is the mesh made from scratch after tiles are subdivided (the
+// parts change size and the mesh moves to a new layout) and their children
+// removed; and a build whose stop has passed meshes kLeastRemeshed tiles or
+// a few more, keeps the others as they were, and the next build catches up.
+TEST(RadiositySnapshot, CachedTilesAcrossResizesAndAStopGiveTheMeshMadeFromScratch) {
+    using V = glm::dvec3;
+    Scene s;
+    const auto m = test::addMaterial(s, V(0.5), V(0.0));
+    std::vector<std::array<V, 4>> tiles;
+    for (int j = 0; j < 10; ++j)
+        for (int i = 0; i < 10; ++i)
+            tiles.push_back({V(i, j, 0), V(i + 1, j, 0), V(i + 1, j + 1, 0), V(i, j + 1, 0)});
+    test::addQuadObject(s, "wall", m, tiles);
+    Hierarchy h(s, 1e-3);
+    const auto paint = [&](double scale) {
+        for (std::uint32_t p = 0; p < h.polygonCount(); ++p)
+            for (std::vector<ElementId> stack{h.polygonElement(p)}; !stack.empty();) {
+                const ElementId e = stack.back();
+                stack.pop_back();
+                h[e].radiosity = scale * V(1.0 + 0.1 * (e % 7), 0.5, 0.25);
+                stack.insert(stack.end(), h[e].children.begin(), h[e].children.end());
+            }
+    };
+    paint(1.0);
+    SnapshotCache cache;
+    MeshSnapshot cached;
+    const auto expectSame = [&](const char* after) {
+        EXPECT_EQ(makeRadiositySnapshot(s, h, cached, cache), 0u) << after;
+        const MeshSnapshot fresh = makeRadiositySnapshot(s, h);
+        ASSERT_EQ(cached.positions, fresh.positions) << after;
+        ASSERT_EQ(cached.colors, fresh.colors) << after;
+        ASSERT_EQ(cached.indices, fresh.indices) << after;
+    };
+    expectSame("the first build");
+    for (std::uint32_t p : {11u, 12u, 55u, 98u}) h.subdivide(h.polygonElement(p));
+    h.subdivide(h[h.polygonElement(12)].children[1]);
+    paint(1.5);
+    expectSame("subdivisions");
+    h.removeChildren(h.polygonElement(12));
+    paint(1.7);
+    expectSame("children removed");
+
+    paint(2.0);
+    const MeshSnapshot before = cached;
+    const std::size_t left = makeRadiositySnapshot(s, h, cached, cache, std::chrono::steady_clock::now() - std::chrono::seconds(1));
+    EXPECT_GT(left, 0u);
+    EXPECT_LE(left, 100u - kLeastRemeshed);
+    // The tiles left keep their colours: as many vertices as before are unchanged.
+    std::size_t same = 0;
+    for (std::size_t v = 0; v < cached.colors.size(); ++v) same += cached.colors[v] == before.colors[v];
+    EXPECT_GT(same, 0u);
+    expectSame("the next build");
 }
 
 // Two tiles of one wall that meet edge to edge: the vertices on the shared

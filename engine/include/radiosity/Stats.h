@@ -99,6 +99,7 @@ struct FrameStats {
     std::size_t pending = 0;           // links left coarser than the criterion asks (and polygons' light links)
     std::size_t stale = 0;             // links a budget left with the transfers of an earlier position
     std::size_t unsent = 0;            // elements whose change a deadline kept from bouncing
+    std::size_t unmeshed = 0;          // polygons whose meshing the deadline left for a later frame (drawn with their last light)
     std::size_t deferred = 0;          // objects whose move a deadline left for a later frame (links not yet updated)
     // A live estimate of how far the frame is from what an unlimited update
     // gives, in the units of SolutionError::rms: the power the stale and
