@@ -587,6 +587,11 @@ const SolveStats& Engine::solve(const Progress& progress) {
     s.refiner.takeDirty();
     s.refiner.sortLinkLists();  // the first traversal then finds its ranges at once
     s.solved = true;
+    // First guess of a further bounce's cost, until a frame makes one: a
+    // sweep of the solve (every link gathered, everything pushed), which a
+    // bounce from part of the scene costs at most. A guess of nothing would
+    // let the first bounce of a drag run whatever the deadline.
+    if (st.iterations > 0) s.updater.guessBounceSeconds(st.solveSeconds / st.iterations);
     // From here on the oracles follow the light in steps from these anchors.
     anchorOracles(s.hierarchy);
     // First guess of a link update's cost, until the frames give a fit: the

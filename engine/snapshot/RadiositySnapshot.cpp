@@ -389,7 +389,10 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
         if (resized) {
             for (const auto& entry : cache.keyed)
                 if (mine(entry.second)) touched.push_back(entry.first);
+            const auto began = std::chrono::steady_clock::now();
             relayout(mesh, cache, remeshed);  // drops their keys and shifts the others
+            const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+            cache.relayoutSeconds = cache.relayoutSeconds > 0.0 ? 0.5 * (cache.relayoutSeconds + took) : took;
         } else {
             std::erase_if(cache.keyed, [&](const std::pair<Key, std::uint32_t>& entry) {
                 if (!mine(entry.second)) return false;
@@ -465,6 +468,8 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     cache.parts.resize(polygons);
     std::vector<std::uint8_t> remeshed(polygons, 0);
     std::atomic<std::size_t> meshed{0}, left{0};
+    std::atomic<bool> resizesWait{false};
+    const bool mayDelayResizes = stop && !cache.resizesWaited;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polygons, 16), [&](const tbb::blocked_range<std::size_t>& r) {
         Scratch scratch;
         for (std::size_t p = r.begin(); p < r.end(); ++p) {
@@ -474,15 +479,22 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
             if (part.valid && part.signature == signature) continue;
             // Past the stop, a polygon already meshed once waits for a later
             // frame (at least kLeastRemeshed a call go ahead: progress).
+            // A part whose leaves changed in number changes size, and the
+            // whole mesh moves to a new layout: past the time that leaves,
+            // it waits too (one build in two at most).
             const std::size_t sofar = meshed.load(std::memory_order_relaxed);
-            if (stop && part.valid && sofar >= kLeastRemeshed &&
+            const bool resizes = part.valid && scratch.leaves.size() != part.leaves;
+            const double needed =
+                double(sofar) * cache.patchSecondsPerPart + (resizes && mayDelayResizes ? cache.relayoutSeconds : 0.0);
+            if (stop && part.valid && (sofar >= kLeastRemeshed || (resizes && mayDelayResizes)) &&
                 std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(double(sofar) * cache.patchSecondsPerPart)) >
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(needed)) >
                     *stop) {
                 left.fetch_add(1, std::memory_order_relaxed);
+                if (resizes) resizesWait.store(true, std::memory_order_relaxed);
                 continue;
             }
+            part.leaves = scratch.leaves.size();
             meshed.fetch_add(1, std::memory_order_relaxed);
             for (std::vector<glm::vec3>* v : {&part.mesh.positions, &part.mesh.normals, &part.mesh.colors, &part.mesh.texelScale})
                 v->clear();
@@ -507,12 +519,15 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
                       mesh.indices.size() == cache.indices && mesh.linePositions.empty() &&
                       cache.vertexAt.size() == polygons + 1 && box.lo == cache.keyOrigin &&
                       keyCellOf(box) == cache.keyCell;
+    cache.resizesWaited = resizesWait.load();
     if (same) {
         const auto patchStart = std::chrono::steady_clock::now();
+        const double relayoutBefore = cache.relayoutSeconds;
         patch(mesh, cache, remeshed);
         if (const std::size_t n = meshed.load(); n >= kLeastRemeshed) {
-            const double per = std::chrono::duration<double>(std::chrono::steady_clock::now() - patchStart).count() / double(n);
-            cache.patchSecondsPerPart = 0.5 * (cache.patchSecondsPerPart + per);
+            double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - patchStart).count();
+            if (cache.relayoutSeconds != relayoutBefore) took = std::max(0.0, took - cache.relayoutSeconds);
+            cache.patchSecondsPerPart = 0.5 * (cache.patchSecondsPerPart + took / double(n));
         }
         return left.load();
     }

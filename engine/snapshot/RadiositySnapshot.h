@@ -30,6 +30,7 @@ struct SnapshotCache {
         // The vertices on the polygon's outline: only they can meet another
         // polygon's, so only they take part in smoothing across polygons.
         std::vector<std::uint32_t> outline;
+        std::size_t leaves = 0;  // when it was meshed: another count changes its size
     };
     std::vector<Part> parts;  // per input polygon
     // The mesh last assembled from the parts: where each part starts in it,
@@ -45,6 +46,12 @@ struct SnapshotCache {
     // What writing a re-meshed part into the mesh costs (its seams smoothed
     // again), measured: a build with a stop leaves that time for them.
     double patchSecondsPerPart = 2e-6;
+    // What moving the mesh to a new layout costs (a part changed size), and
+    // whether the last build with a stop left such parts for later: the
+    // next one then meshes them whatever its stop, so they are never left
+    // for good.
+    double relayoutSeconds = 0.0;
+    bool resizesWaited = false;
     struct Key {
         std::int64_t x, y, z, nx, ny, nz;
         auto operator<=>(const Key&) const = default;

@@ -90,6 +90,12 @@ public:
         double seconds(std::size_t changedLeaves) const { return base + perLeaf * double(changedLeaves); }
     };
     void setFrameTail(const FrameTail& tail) { tail_ = tail; }
+    // What a further bounce, and the push of the receivers waiting for one,
+    // are expected to cost before one was measured.
+    void guessBounceSeconds(double seconds) {
+        if (bounceSeconds_ == 0.0) bounceSeconds_ = seconds;
+        if (waitingPushSeconds_ == 0.0) waitingPushSeconds_ = seconds;
+    }
 
     // The live error estimate (FrameStats::estimatedError), in the units of
     // SolutionError::rms: what the stale and pending links and the unsent
