@@ -7,6 +7,17 @@
 
 namespace rad {
 
+VkImageMemoryBarrier colorLayoutBarrier(VkImage image, VkImageLayout from, VkImageLayout to, std::uint32_t layers) {
+    auto barrier = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+    barrier.oldLayout = from;
+    barrier.newLayout = to;
+    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image;
+    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+    return barrier;
+}
+
 UniqueMemory allocateMemory(const VulkanContext& context, const VkMemoryRequirements& req,
                             VkMemoryPropertyFlags properties) {
     auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);

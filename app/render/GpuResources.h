@@ -17,6 +17,10 @@ class VulkanContext;
 UniqueMemory allocateMemory(const VulkanContext& context, const VkMemoryRequirements& req,
                             VkMemoryPropertyFlags properties);
 
+// The barrier that moves the colour image's mip level 0, layers 0 to
+// layers - 1, from one layout to another (no queue family transfer).
+VkImageMemoryBarrier colorLayoutBarrier(VkImage image, VkImageLayout from, VkImageLayout to, std::uint32_t layers = 1);
+
 // A 2D view of mip level 0, layer 0 of the image.
 UniqueImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect);
 

@@ -88,17 +88,6 @@ void resampleInto(const Texture& texture, std::uint32_t width, std::uint32_t hei
         }
 }
 
-VkImageMemoryBarrier textureLayoutBarrier(VkImage image, std::uint32_t layers, VkImageLayout from,
-                                          VkImageLayout to) {
-    auto barrier = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-    barrier.oldLayout = from;
-    barrier.newLayout = to;
-    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image;
-    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
-    return barrier;
-}
 
 }  // namespace
 
@@ -192,8 +181,7 @@ GpuTextures::GpuTextures(const VulkanContext& context,
     GpuBuffer staging(context, packed.srgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     staging.write(packed.srgba.data(), packed.srgba.size());
     context.runOneShot([&](VkCommandBuffer cmd) {
-        auto toCopy = textureLayoutBarrier(image, layers_, VK_IMAGE_LAYOUT_UNDEFINED,
-                                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        auto toCopy = colorLayoutBarrier(image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layers_);
         toCopy.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                              0, 0, nullptr, 0, nullptr, 1, &toCopy);
@@ -203,8 +191,7 @@ GpuTextures::GpuTextures(const VulkanContext& context,
         region.imageExtent = {extent_.width, extent_.height, 1};
         vkCmdCopyBufferToImage(cmd, staging.buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                1, &region);
-        auto toRead = textureLayoutBarrier(image, layers_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        auto toRead = colorLayoutBarrier(image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, layers_);
         toRead.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         toRead.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,

@@ -1,20 +1,6 @@
 #include "render/ImageReadback.h"
 
 namespace rad {
-namespace {
-
-VkImageMemoryBarrier layoutChange(VkImage image, VkImageLayout from, VkImageLayout to) {
-    auto barrier = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-    barrier.oldLayout = from;
-    barrier.newLayout = to;
-    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image;
-    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    return barrier;
-}
-
-}  // namespace
 
 ImageReadback::ImageReadback(const VulkanContext& context, VkExtent2D extent, std::uint32_t bytesPerPixel)
     : buffer_(context, VkDeviceSize{bytesPerPixel} * extent.width * extent.height, VK_BUFFER_USAGE_TRANSFER_DST_BIT),
@@ -25,7 +11,7 @@ void ImageReadback::record(VkCommandBuffer cmd, VkImage image, VkImageLayout lay
     if (move) {
         // The render pass made the colour writes visible to transfers
         // (createColorDepthRenderPass): chain on its transfer stage.
-        auto toCopy = layoutChange(image, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        auto toCopy = colorLayoutBarrier(image, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         toCopy.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
         toCopy.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -50,7 +36,7 @@ void ImageReadback::record(VkCommandBuffer cmd, VkImage image, VkImageLayout lay
         return;
     }
     // Moving back only has to wait for the copy's reads: no access to flush.
-    const auto back = layoutChange(image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout);
+    const auto back = colorLayoutBarrier(image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout);
     const VkPipelineStageFlags after = VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, after, 0, 0, nullptr, 1, &toHost, 1, &back);
 }

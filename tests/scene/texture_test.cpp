@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <string>
 #include <vector>
 
 #include "hierarchy/Hierarchy.h"
@@ -18,17 +20,22 @@ namespace {
 
 using test::GltfBuilder;
 
+// A material with an RGB texture of one row, baseColorFactor 0.8.
+int addTexturedMaterial(GltfBuilder& g, const std::vector<std::array<unsigned char, 3>>& row) {
+    const std::string png = test::makePng(static_cast<int>(row.size()), 1, row);
+    g.images.push_back("{\"uri\":\"data:image/png;base64," + test::base64(png) + "\"}");
+    g.textures.push_back("{\"source\":" + std::to_string(g.images.size() - 1) + "}");
+    return g.addMaterial(
+        "{\"name\":\"Tex\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.8,0.8,1],"
+        "\"baseColorTexture\":{\"index\":" + std::to_string(g.textures.size() - 1) + "}}}");
+}
+
 // A 2 x 3 m rectangle in the plane z = 0 facing +z, texture coordinates
 // u = x / 2, v = y / 3, and a 4 x 1 texture: two white texels, then two
 // black ones, so the half x < 1 is white. baseColorFactor 0.8.
 GltfBuilder texturedRectangle() {
     GltfBuilder g;
-    const std::string png = test::makePng(4, 1, {{255, 255, 255}, {255, 255, 255}, {0, 0, 0}, {0, 0, 0}});
-    g.images.push_back("{\"uri\":\"data:image/png;base64," + test::base64(png) + "\"}");
-    g.textures.push_back("{\"source\":0}");
-    const int mat = g.addMaterial(
-        "{\"name\":\"Tex\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.8,0.8,1],"
-        "\"baseColorTexture\":{\"index\":0}}}");
+    const int mat = addTexturedMaterial(g, {{255, 255, 255}, {255, 255, 255}, {0, 0, 0}, {0, 0, 0}});
     const std::vector<glm::vec3> p = {{0, 0, 0}, {2, 0, 0}, {2, 3, 0}, {0, 3, 0}};
     const std::vector<glm::vec2> uv = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     g.addMesh("T", g.addPositions(p), g.addIndices({0, 1, 2, 0, 2, 3}), mat, -1, g.addTexCoords(uv));
@@ -110,12 +117,7 @@ TEST(Texture, TheSolutionAndTheSnapshotFollowTheTexture) {
 TEST(Texture, TilesMeetingAtASeamShareTheirLightNotTheirColour) {
     test::TempDir dir;
     GltfBuilder g;
-    const std::string png = test::makePng(4, 1, {{255, 255, 255}, {255, 255, 255}, {128, 128, 128}, {128, 128, 128}});
-    g.images.push_back("{\"uri\":\"data:image/png;base64," + test::base64(png) + "\"}");
-    g.textures.push_back("{\"source\":0}");
-    const int mat = g.addMaterial(
-        "{\"name\":\"Tex\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.8,0.8,1],"
-        "\"baseColorTexture\":{\"index\":0}}}");
+    const int mat = addTexturedMaterial(g, {{255, 255, 255}, {255, 255, 255}, {128, 128, 128}, {128, 128, 128}});
     // Two quads that share no vertex index: two polygons.
     const std::vector<glm::vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 3, 0}, {0, 3, 0}, {1, 0, 0}, {2, 0, 0}, {2, 3, 0}, {1, 3, 0}};
     std::vector<glm::vec2> uv;
