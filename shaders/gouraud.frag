@@ -17,8 +17,19 @@ layout(push_constant) uniform PushConstants {
     float exposureScale;
 } pc;
 
-// GpuTextures: one layer per texture, bilinear, repeated.
+// GpuTextures: one layer per texture, bilinear; the sampler repeats, and
+// the texture's own wrap modes (MeshVertex::layer's bits 16-17 for u,
+// 18-19 for v: 0 repeat, 1 clamp to edge, 2 mirrored repeat) are applied here.
 layout(set = 0, binding = 0) uniform sampler2DArray textures;
+
+// One coordinate wrapped as the texture says, `size` texels wide. Clamped
+// and mirrored coordinates stay half a texel inside the edges, where the
+// repeating sampler's bilinear filter does not reach across.
+float wrapCoordinate(float t, int mode, float size) {
+    if (mode == 0) return t;
+    if (mode == 2) t = 1.0 - abs(mod(t, 2.0) - 1.0);
+    return clamp(t, 0.5 / size, 1.0 - 0.5 / size);
+}
 
 layout(location = 0) in vec3 inColor;
 layout(location = 1) in vec2 inUv;
@@ -36,7 +47,12 @@ void main() {
     vec3 c = inColor;
     // Level 0 explicitly: the image has no mipmaps, and texture() would take
     // derivatives inside a branch that neighbouring triangles may not take.
-    if (inLayer >= 0) c *= textureLod(textures, vec3(inUv, float(inLayer)), 0.0).rgb * inTexelScale;
+    if (inLayer >= 0) {
+        vec2 size = vec2(textureSize(textures, 0).xy);
+        vec2 uv = vec2(wrapCoordinate(inUv.x, (inLayer >> 16) & 3, size.x),
+                             wrapCoordinate(inUv.y, (inLayer >> 18) & 3, size.y));
+        c *= textureLod(textures, vec3(uv, float(inLayer & 0xFFFF)), 0.0).rgb * inTexelScale;
+    }
     vec3 color = c * pc.exposureScale;
     outColor = vec4(ENCODE_SRGB ? encodeSrgb(color) : color, 1.0);
 }

@@ -41,8 +41,12 @@ struct MeshVertex {
     glm::vec3 color;  // linear RGB
     glm::vec2 uv{0.0f};
     glm::vec3 texelScale{1.0f};
-    std::int32_t layer = -1;  // GpuTextures layer (MeshSnapshot::textureLayer); -1: untextured
+    // GpuTextures layer (MeshSnapshot::textureLayer) in the low 16 bits, the
+    // texture's Texture::Wrap in u and v above them; -1: untextured.
+    std::int32_t layer = -1;
 };
+
+inline constexpr int kWrapUShift = 16, kWrapVShift = 18;
 
 // The GPU copy of one MeshSnapshot (its textures go to a GpuTextures). It
 // must stay alive until the command buffers that draw it have finished

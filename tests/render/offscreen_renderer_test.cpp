@@ -413,6 +413,31 @@ TEST_F(OffscreenRendererTest, TexturedQuadShowsTheTexelsWhereTheTextureSaysAndUn
     }
 }
 
+// The texture's wrap modes beyond uv 1: a quad with u from 0 to 2 over a
+// black | white texture repeats it, clamps it to its white edge, or
+// mirrors it (white, then black). Pixels 41 and 57 of 66 sit at u 1.26
+// and 1.74, near texel centres once wrapped.
+TEST_F(OffscreenRendererTest, TexturesWrapAsTheirSamplerSays) {
+    constexpr int kSize = 66;
+    struct Case {
+        Texture::Wrap wrap;
+        float at41, at57;
+    };
+    for (const Case& c : {Case{Texture::Wrap::Repeat, 0.0f, 1.0f}, Case{Texture::Wrap::Clamp, 1.0f, 1.0f},
+                          Case{Texture::Wrap::Mirror, 1.0f, 0.0f}}) {
+        SCOPED_TRACE(static_cast<int>(c.wrap));
+        auto texture = std::make_shared<Texture>(*makeTexture(2, 1, {0, 0, 0, 255, 255, 255, 255, 255}));
+        texture->wrapU = texture->wrapV = c.wrap;
+        MeshSnapshot mesh;
+        mesh.textures = {texture};
+        addTexturedRect(mesh, -1.0f, -1.0f, 1.0f, 1.0f, 0.5f, glm::vec3(1.0f), 0, glm::vec2(2.0f, 1.0f));
+        const Image image = renderer_->render(mesh, kIdentity, kSize, kSize);
+        EXPECT_NEAR(image.pixel(41, 33)[0], c.at41, 0.05f);
+        EXPECT_NEAR(image.pixel(57, 33)[0], c.at57, 0.05f);
+        EXPECT_NEAR(image.pixel(8, 33)[0], 0.0f, 0.05f);  // u 0.26: the black texel, whatever the mode
+    }
+}
+
 // The texel is decoded from sRGB (128 reads 0.216, not 0.502) and multiplied
 // by the colour and texelScale, per channel; exposure applies after.
 TEST_F(OffscreenRendererTest, TexelIsLinearTimesColourTimesTexelScale) {
