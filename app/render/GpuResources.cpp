@@ -1,5 +1,7 @@
 #include "render/GpuResources.h"
 
+#include <algorithm>
+
 #include <cstring>
 #include <stdexcept>
 
@@ -28,12 +30,13 @@ UniqueMemory allocateMemory(const VulkanContext& context, const VkMemoryRequirem
     return UniqueMemory(context.device(), memory);
 }
 
-UniqueImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect) {
+UniqueImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+                                std::uint32_t arrayLayers) {
     auto info = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
     info.image = image;
-    info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    info.viewType = arrayLayers > 0 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
     info.format = format;
-    info.subresourceRange = {aspect, 0, 1, 0, 1};
+    info.subresourceRange = {aspect, 0, 1, 0, std::max<std::uint32_t>(arrayLayers, 1)};
     VkImageView view = VK_NULL_HANDLE;
     vkCheck(vkCreateImageView(device, &info, nullptr, &view), "vkCreateImageView");
     return {device, view};
@@ -65,7 +68,8 @@ void GpuBuffer::write(const void* data, std::size_t bytes) {
 }
 
 GpuImage::GpuImage(const VulkanContext& context, std::uint32_t width, std::uint32_t height,
-                   VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect)
+                   VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect,
+                   std::uint32_t arrayLayers)
     : format_(format) {
     VkDevice device = context.device();
     auto info = vkStruct<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
@@ -73,7 +77,7 @@ GpuImage::GpuImage(const VulkanContext& context, std::uint32_t width, std::uint3
     info.format = format;
     info.extent = {width, height, 1};
     info.mipLevels = 1;
-    info.arrayLayers = 1;
+    info.arrayLayers = std::max<std::uint32_t>(arrayLayers, 1);
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
     info.usage = usage;
@@ -88,7 +92,7 @@ GpuImage::GpuImage(const VulkanContext& context, std::uint32_t width, std::uint3
     memory_ = allocateMemory(context, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     vkCheck(vkBindImageMemory(device, image, memory_.get(), 0), "vkBindImageMemory");
 
-    view_ = createImageView(device, image, format, aspect);
+    view_ = createImageView(device, image, format, aspect, arrayLayers);
 }
 
 }  // namespace rad

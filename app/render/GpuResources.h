@@ -21,8 +21,10 @@ UniqueMemory allocateMemory(const VulkanContext& context, const VkMemoryRequirem
 // layers - 1, from one layout to another (no queue family transfer).
 VkImageMemoryBarrier colorLayoutBarrier(VkImage image, VkImageLayout from, VkImageLayout to, std::uint32_t layers = 1);
 
-// A 2D view of mip level 0, layer 0 of the image.
-UniqueImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect);
+// A view of mip level 0 of the image: 2D (layer 0) when arrayLayers is 0,
+// else a 2D array of that many layers (a sampler2DArray, even of one).
+UniqueImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+                                std::uint32_t arrayLayers = 0);
 
 // A buffer in host-visible, coherent memory, mapped for its whole life. Mesh
 // data is small next to the cost of a solve, and lavapipe's memory is all
@@ -45,12 +47,14 @@ class GpuBuffer {
     void* mapped_ = nullptr;  // unmapped implicitly by vkFreeMemory
 };
 
-// A 2D image in device-local memory with one view, for attachments.
+// A 2D image in device-local memory with one view: for attachments, or
+// with arrayLayers > 0 an array of that many layers viewed as one (textures).
 class GpuImage {
   public:
     GpuImage() = default;
     GpuImage(const VulkanContext& context, std::uint32_t width, std::uint32_t height,
-             VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect);
+             VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect,
+             std::uint32_t arrayLayers = 0);
 
     VkImage image() const { return image_.get(); }
     VkImageView view() const { return view_.get(); }

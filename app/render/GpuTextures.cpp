@@ -158,24 +158,9 @@ GpuTextures::GpuTextures(const VulkanContext& context,
     VkDevice device = context.device();
 
     // The image: one array layer per texture, sampled in the fragment shader.
-    auto imageInfo = vkStruct<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
-    imageInfo.imageType = VK_IMAGE_TYPE_2D;
-    imageInfo.format = kTextureFormat;
-    imageInfo.extent = {extent_.width, extent_.height, 1};
-    imageInfo.mipLevels = 1;
-    imageInfo.arrayLayers = layers_;
-    imageInfo.samples = VK_SAMPLE_COUNT_1_BIT;
-    imageInfo.tiling = VK_IMAGE_TILING_OPTIMAL;
-    imageInfo.usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    imageInfo.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    imageInfo.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    VkImage image = VK_NULL_HANDLE;
-    vkCheck(vkCreateImage(device, &imageInfo, nullptr, &image), "vkCreateImage");
-    image_ = UniqueImage(device, image);
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(device, image, &req);
-    memory_ = allocateMemory(context, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    vkCheck(vkBindImageMemory(device, image, memory_.get(), 0), "vkBindImageMemory");
+    image_ = GpuImage(context, extent_.width, extent_.height, kTextureFormat,
+                      VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT, layers_);
+    const VkImage image = image_.image();
 
     // Upload: staging buffer -> image, then ready for the fragment shader.
     GpuBuffer staging(context, packed.srgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
@@ -198,15 +183,6 @@ GpuTextures::GpuTextures(const VulkanContext& context,
                              VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1,
                              &toRead);
     });  // waits: the staging buffer may go
-
-    auto viewInfo = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
-    viewInfo.image = image;
-    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;  // sampler2DArray, even for one layer
-    viewInfo.format = kTextureFormat;
-    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers_};
-    VkImageView view = VK_NULL_HANDLE;
-    vkCheck(vkCreateImageView(device, &viewInfo, nullptr, &view), "vkCreateImageView");
-    view_ = UniqueImageView(device, view);
 
     auto samplerInfo = vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
     samplerInfo.magFilter = VK_FILTER_LINEAR;
@@ -239,7 +215,7 @@ GpuTextures::GpuTextures(const VulkanContext& context,
     allocInfo.pSetLayouts = &setLayout;
     vkCheck(vkAllocateDescriptorSets(device, &allocInfo, &set_), "vkAllocateDescriptorSets");
 
-    const VkDescriptorImageInfo imageDescriptor{sampler, view,
+    const VkDescriptorImageInfo imageDescriptor{sampler, image_.view(),
                                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     auto write = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     write.dstSet = set_;

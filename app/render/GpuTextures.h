@@ -78,9 +78,7 @@ class GpuTextures {
 
   private:
     std::vector<std::shared_ptr<const Texture>> sources_;
-    UniqueMemory memory_;
-    UniqueImage image_;
-    UniqueImageView view_;
+    GpuImage image_;  // one layer per texture, viewed as a 2D array
     UniqueSampler sampler_;
     UniqueDescriptorSetLayout setLayout_;
     UniqueDescriptorPool pool_;
