@@ -43,6 +43,23 @@ GltfBuilder texturedRectangle() {
     return g;
 }
 
+// The lit mesh of the scene solved at the default settings under a point
+// light of intensity 10 at `at` (an empty mesh, and a failure, if the solve
+// does not converge).
+MeshSnapshot solvedUnderABulb(Scene s, const glm::dvec3& at) {
+    PunctualLight bulb;
+    bulb.name = "bulb";
+    bulb.position = at;
+    bulb.intensity = glm::dvec3(10.0);
+    s.lights.push_back(bulb);
+    Engine engine(s, EngineSettings{});
+    if (!engine.solve().converged) {
+        ADD_FAILURE() << "the solve did not converge";
+        return {};
+    }
+    return engine.snapshot();
+}
+
 TEST(Texture, CoordinatesReachThePolygons) {
     test::TempDir dir;
     const Scene s = loadGltf(texturedRectangle().writeEmbedded(dir).string());
@@ -78,15 +95,7 @@ TEST(Texture, ElementsReflectTheTexelsUnderThem) {
 // reflectance each vertex's radiosity was computed with.
 TEST(Texture, TheSolutionAndTheSnapshotFollowTheTexture) {
     test::TempDir dir;
-    Scene s = loadGltf(texturedRectangle().writeEmbedded(dir).string());
-    PunctualLight bulb;
-    bulb.name = "bulb";
-    bulb.position = glm::dvec3(1.0, 1.5, 2.0);
-    bulb.intensity = glm::dvec3(10.0);
-    s.lights.push_back(bulb);
-    Engine engine(s, EngineSettings{});
-    ASSERT_TRUE(engine.solve().converged);
-    const MeshSnapshot mesh = engine.snapshot();
+    const MeshSnapshot mesh = solvedUnderABulb(loadGltf(texturedRectangle().writeEmbedded(dir).string()), glm::dvec3(1.0, 1.5, 2.0));
     ASSERT_EQ(mesh.uvs.size(), mesh.positions.size());
     ASSERT_EQ(mesh.textureLayer.size(), mesh.positions.size());
     ASSERT_EQ(mesh.texelScale.size(), mesh.positions.size());
@@ -124,16 +133,9 @@ TEST(Texture, TilesMeetingAtASeamShareTheirLightNotTheirColour) {
     for (const glm::vec3& q : p) uv.emplace_back(q.x / 2.0f, q.y / 3.0f);
     g.addMesh("T", g.addPositions(p), g.addIndices({0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}), mat, -1, g.addTexCoords(uv));
     g.addNode("\"name\":\"T\",\"mesh\":0");
-    Scene s = loadGltf(g.writeEmbedded(dir).string());
+    const Scene s = loadGltf(g.writeEmbedded(dir).string());
     ASSERT_EQ(s.polygons.size(), 2u);
-    PunctualLight bulb;
-    bulb.name = "bulb";
-    bulb.position = glm::dvec3(1.0, 1.5, 1.0);
-    bulb.intensity = glm::dvec3(10.0);
-    s.lights.push_back(bulb);
-    Engine engine(s, EngineSettings{});
-    ASSERT_TRUE(engine.solve().converged);
-    const MeshSnapshot mesh = engine.snapshot();
+    const MeshSnapshot mesh = solvedUnderABulb(s, glm::dvec3(1.0, 1.5, 1.0));
     ASSERT_EQ(mesh.texelScale.size(), mesh.positions.size());
     int seams = 0;
     for (std::size_t i = 0; i < mesh.positions.size(); ++i)
