@@ -221,16 +221,7 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
     // moving shadow's darker and lighter parts send changes of opposite
     // signs that cancel there, so their sum counts, spread over the scene.
     double unsent = 0.0;
-    for (ElementId e : unsent_) {
-        const HElement& el = h_[e];
-        if (el.outLinks.empty()) continue;
-        if (el.shape == kNone) {
-            unsent += luminance(el.radiosity - el.gathered) * el.area;
-        } else {
-            const ClusterShape& shape = h_.shape(e);
-            for (int k = 0; k < shape.facetCount; ++k) unsent += luminance(shape.power[k] - shape.gathered[k]);
-        }
-    }
+    for (ElementId e : unsent_) unsent += unsentPowerOf(e, false);
     unsent *= rhoMean;
     squares += unsent * unsent / area;
     return std::sqrt(squares * area) / total;
@@ -290,20 +281,14 @@ double LineSpaceUpdate::shareThatFits(std::size_t changedLeaves, double work) co
     return work > left ? left / work : 1.0;
 }
 
-double LineSpaceUpdate::unsentPowerOf(ElementId e) const {
+double LineSpaceUpdate::unsentPowerOf(ElementId e, bool absolute) const {
     const HElement& el = h_[e];
     if (el.outLinks.empty()) return 0.0;
-    if (el.shape == kNone) return std::abs(luminance(el.radiosity - el.gathered)) * el.area;
+    const auto part = [&](double p) { return absolute ? std::abs(p) : p; };
+    if (el.shape == kNone) return part(luminance(el.radiosity - el.gathered)) * el.area;
     const ClusterShape& shape = h_.shape(e);
     double power = 0.0;
-    for (int k = 0; k < shape.facetCount; ++k) power += std::abs(luminance(shape.power[k] - shape.gathered[k]));
-    return power;
-}
-
-double LineSpaceUpdate::unsentPower() const {
-    double power = 0.0;
-    for (ElementId e : unsent_) power += unsentPowerOf(e);
-    for (ElementId e : waiting_) power += std::max(0.0, waitingChange_[e]) * h_[e].area;
+    for (int k = 0; k < shape.facetCount; ++k) power += part(luminance(shape.power[k] - shape.gathered[k]));
     return power;
 }
 

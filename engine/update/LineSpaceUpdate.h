@@ -250,10 +250,9 @@ private:
     // Elements whose change of radiosity a deadline kept from being sent
     // (bounced): the next bounce, in a later frame or idle time, sends it.
     std::vector<ElementId> unsent_;
-    // The power they have yet to send, and the waiting receivers have yet
-    // to reflect (an upper bound of what it changes); one element's.
-    double unsentPower() const;
-    double unsentPowerOf(ElementId e) const;
+    // The power one of them has yet to send: the sum of its changes
+    // (a cluster's, facet by facet) in size, or with their signs.
+    double unsentPowerOf(ElementId e, bool absolute = true) const;
     // Link updates made between two looks at the clock.
     static constexpr std::size_t kDeadlineChunk = 1024;
     std::vector<LinkId> pending_;
