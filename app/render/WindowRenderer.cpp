@@ -159,6 +159,7 @@ VkCommandBuffer WindowRenderer::beginFrame(const std::array<float, 4>& clearColo
     // A free frame slot and an image to draw into.
     Frame& frame = frames_[frameIndex_];
     frame.done.wait();
+    finished_ = std::max(finished_, frame.serial);  // the queue runs frames in order
     frame.keepAlive.reset();
     const VkResult acquired =
         vkAcquireNextImageKHR(context_.device(), swapchain_.get(), UINT64_MAX, frame.imageAvailable.get(),
@@ -181,7 +182,7 @@ VkCommandBuffer WindowRenderer::beginFrame(const std::array<float, 4>& clearColo
     return frame.cmd;
 }
 
-void WindowRenderer::endFrame(std::shared_ptr<const void> keepAlive, const std::string& capturePath) {
+std::uint64_t WindowRenderer::endFrame(std::shared_ptr<const void> keepAlive, const std::string& capturePath) {
     Frame& frame = frames_[frameIndex_];
     VkCommandBuffer cmd = frame.cmd;
     vkCmdEndRenderPass(cmd);
@@ -210,6 +211,7 @@ void WindowRenderer::endFrame(std::shared_ptr<const void> keepAlive, const std::
     submit.pSignalSemaphores = &rendered;
     context_.submit(submit, frame.done.get());
     frame.keepAlive = std::move(keepAlive);
+    frame.serial = ++submitted_;
 
     const VkSwapchainKHR swapchain = swapchain_.get();
     auto present = vkStruct<VkPresentInfoKHR>(VK_STRUCTURE_TYPE_PRESENT_INFO_KHR);
@@ -231,8 +233,10 @@ void WindowRenderer::endFrame(std::shared_ptr<const void> keepAlive, const std::
 
     if (capture) {
         frame.done.wait();
+        finished_ = frame.serial;
         writeCapture(capturePath, capture->data());
     }
+    return frame.serial;
 }
 
 void WindowRenderer::writeCapture(const std::string& path, const void* pixels) const {

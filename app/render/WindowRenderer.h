@@ -63,7 +63,11 @@ class WindowRenderer {
     // Ends the render pass, submits and presents. keepAlive is held until the
     // GPU has finished the frame (the meshes it draws). With capturePath the
     // presented image is also written as an 8-bit PNG (waits for the frame).
-    void endFrame(std::shared_ptr<const void> keepAlive, const std::string& capturePath = {});
+    // Returns the frame's serial number (1, 2, ...).
+    std::uint64_t endFrame(std::shared_ptr<const void> keepAlive, const std::string& capturePath = {});
+    // Frames up to this serial number are known to be finished on the GPU
+    // (learnt when beginFrame waits for a frame slot).
+    std::uint64_t finishedFrames() const { return finished_; }
 
     // vkDeviceWaitIdle under the queue lock.
     void waitIdle() const;
@@ -76,6 +80,7 @@ class WindowRenderer {
         Fence done;
         UniqueSemaphore imageAvailable;
         std::shared_ptr<const void> keepAlive;
+        std::uint64_t serial = 0;
     };
 
     void createSwapchain();
@@ -90,6 +95,7 @@ class WindowRenderer {
     CommandPool commandPool_;
     std::array<Frame, kFramesInFlight> frames_;
     std::uint32_t frameIndex_ = 0;
+    std::uint64_t submitted_ = 0, finished_ = 0;
 
     UniqueSwapchain swapchain_;
     VkExtent2D extent_{0, 0};

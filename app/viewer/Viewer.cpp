@@ -271,6 +271,12 @@ int runViewer(const ViewerOptions& options) {
         // is a draw option: moving the slider uploads nothing.
         std::shared_ptr<const GpuScene> gpuScene;
         std::shared_ptr<const MeshSnapshot> gpuSource;
+        // --log-transforms: "viewer: shown overlays links=L changed=C" once a
+        // frame drawing a mesh with other overlays than the last line said
+        // has finished (scripts wait for it before a screenshot).
+        SnapshotOverlays overlaysLogged, overlaysToLog;
+        bool overlaysUnlogged = false;
+        std::uint64_t overlaysDrawnIn = 0;
 
         auto pending = options.screenshots;
         std::sort(pending.begin(), pending.end());
@@ -293,6 +299,19 @@ int runViewer(const ViewerOptions& options) {
                 gpuScene = std::make_shared<const GpuScene>(
                     GpuScene{std::make_shared<const GpuMesh>(*context, *snap->mesh), std::move(textures)});
                 if (firstMeshAt < 0.0) firstMeshAt = now;
+                if (options.logTransforms && (snap->overlays.modifiedLinks != overlaysLogged.modifiedLinks ||
+                                              snap->overlays.changedElements != overlaysLogged.changedElements)) {
+                    overlaysToLog = snap->overlays;
+                    overlaysUnlogged = true;
+                    overlaysDrawnIn = 0;
+                }
+            }
+            if (overlaysUnlogged && overlaysDrawnIn > 0 && windowRenderer.finishedFrames() >= overlaysDrawnIn) {
+                std::printf("viewer: shown overlays links=%d changed=%d\n", overlaysToLog.modifiedLinks ? 1 : 0,
+                            overlaysToLog.changedElements ? 1 : 0);
+                std::fflush(stdout);
+                overlaysLogged = overlaysToLog;
+                overlaysUnlogged = false;
             }
 
             if (windowRenderer.swapchainGeneration() != imguiGeneration) {
@@ -628,7 +647,8 @@ int runViewer(const ViewerOptions& options) {
                     meshRenderer.draw(cmd, *gpuScene->mesh, *gpuScene->textures, view.viewProjectionF(),
                                       windowRenderer.extent(), drawOptions);
                 ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
-                windowRenderer.endFrame(gpuScene, capture);
+                const std::uint64_t serial = windowRenderer.endFrame(gpuScene, capture);
+                if (overlaysUnlogged && overlaysDrawnIn == 0 && gpuScene) overlaysDrawnIn = serial;
                 if (!capture.empty()) {
                     std::printf("screenshot: %s\n", capture.c_str());
                     std::fflush(stdout);

@@ -110,7 +110,8 @@ void addOptions(CLI::App& app, ViewerOptions& o) {
         ->group(hooks);
     cli::addFlag(app, "--log-transforms", o.logTransforms,
                  "print 'engine: transform NAME translation X Y Z' for every\n"
-                 "transform the engine thread applies")
+                 "transform the engine thread applies, and 'viewer: shown overlays\n"
+                 "links=0|1 changed=0|1' once the window shows other overlays")
         ->group(hooks);
     cli::addFlag(app, "--print-gizmo", o.printGizmo,
                  "print 'object: NAME X Y' (screen pixels of each object's box\n"

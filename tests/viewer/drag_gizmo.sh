@@ -89,9 +89,11 @@ fi
 
 xdotool key l
 xdotool key c
-# The engine thread takes the overlay keys between frames; catching up after
-# a drag, a frame under the sanitizers can take a second.
-sleep 3
+# The engine thread takes the overlay keys between frames, and on lavapipe
+# under load a frame drawing tens of thousands of link lines takes seconds:
+# the viewer says when a frame with both overlays has finished.
+wait_for "viewer: shown overlays links=1 changed=1"
+sleep 0.5
 shot "$out/overlays.png"
 
 xdotool key ctrl+q
