@@ -824,6 +824,20 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
     return f;
 }
 
+std::vector<std::uint32_t> Engine::objectMaterials(const std::string& object) const {
+    const Scene& scene = state_->scene;
+    const std::optional<std::uint32_t> found = scene.findObject(object);
+    if (!found) {
+        if (scene.findLight(object)) return {};
+        throw std::invalid_argument("no object '" + object + "' in " + scene.sourcePath);
+    }
+    const Object& o = scene.objects[*found];
+    std::vector<std::uint32_t> materials;
+    for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p)
+        materials.push_back(scene.polygons[p].material);
+    return materials;
+}
+
 FrameStats Engine::editMaterial(const std::string& object, const std::optional<glm::dvec3>& emission,
                                 const std::optional<glm::dvec3>& reflectance, const UpdateSettings& settings) {
     return editMaterials({{object, emission, reflectance}}, settings);
@@ -859,6 +873,16 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
                                glm::all(glm::lessThanEqual(*e.reflectance, glm::dvec3(1.0)))))
             throw std::invalid_argument("reflectance " + channels(*e.reflectance) + " of '" + e.object +
                                         "': each channel must be in [0, 1]");
+        if (!e.restore.empty()) {
+            if (light || e.restore.size() != s.scene.objects[*found].polygonCount)
+                throw std::invalid_argument("the materials to restore for '" + e.object + "' are " +
+                                            std::to_string(e.restore.size()) + ", not one per polygon (" +
+                                            std::to_string(light ? 0 : s.scene.objects[*found].polygonCount) + ")");
+            for (std::uint32_t m : e.restore)
+                if (m >= s.scene.materials.size())
+                    throw std::invalid_argument("material " + std::to_string(m) + " to restore for '" + e.object +
+                                                "' does not exist");
+        }
     }
     std::vector<ElementId> changed;
     for (const MaterialEdit& e : edits) {
@@ -873,9 +897,9 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
         }
         const Object& o = s.scene.objects[*s.scene.findObject(e.object)];
         // The object's own copies of its materials (other objects may share
-        // them), with only the given values changed.
+        // them), with only the given values changed; or the materials it had.
         std::map<std::uint32_t, std::uint32_t> copyOf;
-        for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) {
+        for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount && e.restore.empty(); ++p) {
             const std::uint32_t old = s.scene.polygons[p].material;
             if (copyOf.count(old)) continue;
             Material m = s.scene.materials[old];
@@ -891,7 +915,8 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
             s.scene.materials.push_back(m);
         }
         for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) {
-            const std::uint32_t material = copyOf[s.scene.polygons[p].material];
+            const std::uint32_t material =
+                e.restore.empty() ? copyOf[s.scene.polygons[p].material] : e.restore[p - o.firstPolygon];
             if (material == s.scene.polygons[p].material) continue;
             s.scene.polygons[p].material = material;
             const Material& m = s.scene.materials[material];

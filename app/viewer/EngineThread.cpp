@@ -55,6 +55,8 @@ struct EngineThread::Worker {
     std::string selectionNote;
     std::map<std::uint32_t, glm::dmat4> moved;  // transforms applied, to re-apply after a re-solve
     std::vector<EditMaterial> edits;            // likewise, in order
+    // ObjectInfo::materials per object, made again after an edit or a solve.
+    std::vector<std::shared_ptr<const std::vector<std::uint32_t>>> materials;
     std::deque<UpdateSample> history;
 
     double now() const {
@@ -172,6 +174,12 @@ void EngineThread::run() {
                 const Material& m = scene.materials[scene.polygons[object.firstPolygon].material];
                 info.emission = m.emission;
                 info.reflectance = m.reflectance;
+                if (w.engine) {
+                    if (w.materials.size() != scene.objects.size()) w.materials.assign(scene.objects.size(), nullptr);
+                    if (!w.materials[o])
+                        w.materials[o] = std::make_shared<const std::vector<std::uint32_t>>(w.engine->objectMaterials(object.name));
+                    info.materials = w.materials[o];
+                }
             }
             info.nodePath = object.nodePath;
             s->objects.push_back(std::move(info));
@@ -331,7 +339,9 @@ void EngineThread::run() {
             std::vector<std::pair<std::string, glm::dmat4>> moves;
             for (const auto& [id, m] : w.moved) moves.emplace_back(w.nameOf(id), m);
             if (!moves.empty()) w.frame = w.engine->moveObjects(moves);
-            for (const EditMaterial& e : w.edits) w.frame = w.engine->editMaterial(e.object, e.emission, e.reflectance);
+            for (const EditMaterial& e : w.edits)
+                w.frame = w.engine->editMaterials({{e.object, e.emission, e.reflectance, e.restore}});
+            w.materials.clear();
             w.solving = false;
             w.progress = w.engine->stats().converged ? "solved" : w.engine->stats().message;
             w.selection.clear();
@@ -452,14 +462,18 @@ void EngineThread::run() {
                             changed = true;
                         },
                         [&](const EditMaterial& e) {
-                            // Consecutive edits of one object: only the newest counts.
+                            // Consecutive edits of one object: only the newest counts
+                            // (unless it leaves a value the earlier one sets; a restore sets all).
                             if (i + 1 < commands.size())
                                 if (const auto* next = std::get_if<EditMaterial>(&commands[i + 1]);
-                                    next && next->object == e.object && (next->emission || !e.emission) &&
-                                    (next->reflectance || !e.reflectance))
+                                    next && next->object == e.object &&
+                                    (!next->restore.empty() ||
+                                     (e.restore.empty() && (next->emission || !e.emission) &&
+                                      (next->reflectance || !e.reflectance))))
                                     return;
-                            w.frame = w.engine->editMaterial(e.object, e.emission, e.reflectance, w.update());
+                            w.frame = w.engine->editMaterials({{e.object, e.emission, e.reflectance, e.restore}}, w.update());
                             w.edits.push_back(e);
+                            w.materials.clear();
                             changed = true;
                         },
                         [&](const WidenSelection&) {

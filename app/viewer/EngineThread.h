@@ -42,6 +42,9 @@ struct ObjectInfo {
     // colour and light controls start from.
     glm::dvec3 emission{0.0};
     glm::dvec3 reflectance{0.0};
+    // Each polygon's material now (Engine::objectMaterials): what an undo of
+    // an edit restores. Null for a light; shared until an edit changes it.
+    std::shared_ptr<const std::vector<std::uint32_t>> materials{};
     std::vector<std::uint32_t> nodePath{};  // Object::nodePath; empty for a light
     bool light = false;  // a punctual light: bounds is its position, emission its intensity
     bool spot = false;   // a spot light: it points down its local -Z
@@ -108,6 +111,9 @@ struct EditMaterial {
     std::string object;
     std::optional<glm::dvec3> emission;
     std::optional<glm::dvec3> reflectance;
+    // Not empty: the materials the object's polygons take back (an undo;
+    // Engine::MaterialEdit::restore, from ObjectInfo::materials).
+    std::vector<std::uint32_t> restore{};
 };
 // The P key: the selection widened to every object under the glTF node the
 // selected objects share, or under its parent when that is selected already

@@ -406,16 +406,22 @@ int runViewer(const ViewerOptions& options) {
                 lastMessage += " is a light: it has no reflectance";
                 actions.reflectanceEdited = false;
             }
+            // An edit gives every polygon of the object one value; its undo
+            // gives each polygon back its material (an object has several).
+            const auto undoOf = [&](const ObjectInfo& o, EditMaterial values) {
+                if (o.materials) values = EditMaterial{o.name, std::nullopt, std::nullopt, *o.materials};
+                return values;
+            };
             if (selected && actions.reflectanceEdited)
                 edit(EditMaterial{selected->name, std::nullopt,
                                   glm::dvec3(controls.reflectance[0], controls.reflectance[1], controls.reflectance[2])},
-                     EditMaterial{selected->name, std::nullopt, selected->reflectance});
+                     undoOf(*selected, EditMaterial{selected->name, std::nullopt, selected->reflectance}));
             if (selected && actions.emissionEdited)
                 edit(EditMaterial{selected->name,
                                   double(controls.emissionIntensity) *
                                       glm::dvec3(controls.emissionColor[0], controls.emissionColor[1], controls.emissionColor[2]),
                                   std::nullopt},
-                     EditMaterial{selected->name, selected->emission, std::nullopt});
+                     undoOf(*selected, EditMaterial{selected->name, selected->emission, std::nullopt}));
             if (actions.select) {
                 std::string name = *actions.select;  // a light's label back to its name
                 for (const ObjectInfo& o : snap->objects)

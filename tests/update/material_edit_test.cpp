@@ -69,6 +69,40 @@ TEST(MaterialEdit, WallRecolouredThenBackReturnsTheSolution) {
     EXPECT_LT(compareSamples(engine.samples(), original).rms, 0.001) << "back to the original colour";
 }
 
+// An object of two materials recoloured (every polygon takes the one
+// colour) and taken back with the materials objectMaterials gave before:
+// each polygon gets its own material again, and the solution returns.
+TEST(MaterialEdit, AnObjectOfTwoMaterialsIsTakenBackPolygonByPolygon) {
+    const EngineSettings settings = test::coarse();
+    Scene scene = twoLamps();
+    const std::uint32_t top = test::addMaterial(scene, V(0.9, 0.2, 0.1), V(0.0), "block-top");
+    const Object& block = scene.objects[*scene.findObject("block")];
+    scene.polygons[block.firstPolygon + 1].material = top;  // its top (boxFaces: -y, +y, ...)
+    Engine engine(std::move(scene), settings);
+    ASSERT_TRUE(engine.solve().converged);
+    const RadiositySamples original = engine.samples();
+    const std::vector<std::uint32_t> before = engine.objectMaterials("block");
+    ASSERT_EQ(before.size(), 6u);
+    ASSERT_NE(before[1], before[0]);
+    engine.editMaterial("block", std::nullopt, V(0.2, 0.5, 0.3));
+    EXPECT_GT(compareSamples(engine.samples(), original).rms, 0.001) << "the block's colour changed the room";
+    Engine::MaterialEdit undo{"block", std::nullopt, std::nullopt, before};
+    engine.editMaterials({undo});
+    EXPECT_EQ(engine.objectMaterials("block"), before);
+    EXPECT_LT(compareSamples(engine.samples(), original).rms, 0.001) << "back to both colours";
+    // A list of the wrong length, or of materials that do not exist, is refused by name.
+    for (const std::vector<std::uint32_t>& bad :
+         {std::vector<std::uint32_t>{before[0]}, std::vector<std::uint32_t>(6, 999u)}) {
+        try {
+            engine.editMaterials({{"block", std::nullopt, std::nullopt, bad}});
+            ADD_FAILURE() << "accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("block"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_EQ(engine.objectMaterials("block"), before);
+}
+
 // Several objects' edits in one frame (one push-pull and one judging of the
 // links); a bad edit among them changes nothing.
 TEST(MaterialEdit, SeveralEditsInOneFrameMatchAFullSolve) {

@@ -136,6 +136,37 @@ TEST(EngineThread, UndoAndRedoAMoveAndAnEdit) {
     EXPECT_EQ(objectNamed(*redone, "back-wall").reflectance, wall) << "only the move is redone";
 }
 
+// An object of two materials: the panel's colour edit gives all of it one
+// colour; its undo (the viewer posts the materials the snapshot listed)
+// gives each polygon its own back, and the picture returns.
+TEST(EngineThread, UndoOfAnEditGivesEachPolygonItsMaterialBack) {
+    Scene scene = test::roomWithBlock();
+    const std::uint32_t top = test::addMaterial(scene, glm::dvec3(0.9, 0.2, 0.1), glm::dvec3(0.0), "block-top");
+    scene.polygons[scene.objects[*scene.findObject("block")].firstPolygon + 1].material = top;
+    EngineSettings settings;
+    settings.epsilon = 1e-3;
+    EngineThread thread(std::move(scene), settings, unlimited());
+    const auto solved = waitFor(thread, [](const ViewerSnapshot& s) { return !s.solving && s.mesh; });
+    ASSERT_TRUE(solved->error.empty()) << solved->error;
+    const std::shared_ptr<const std::vector<std::uint32_t>> materials = objectNamed(*solved, "block").materials;
+    ASSERT_TRUE(materials);
+    ASSERT_EQ(materials->size(), 6u);
+    ASSERT_NE((*materials)[0], (*materials)[1]);
+    const double before = meanColor(*solved->mesh);
+
+    const glm::dvec3 green(0.1, 0.6, 0.2);
+    thread.post(EditMaterial{"block", std::nullopt, green});
+    const auto edited = waitFor(thread, [&](const ViewerSnapshot& s) { return objectNamed(s, "block").reflectance == green; });
+    ASSERT_EQ(objectNamed(*edited, "block").reflectance, green);
+    const std::vector<std::uint32_t> after = *objectNamed(*edited, "block").materials;
+    EXPECT_NE(after, *materials) << "the edit gave the block copies of its materials in the new colour";
+
+    thread.post(EditMaterial{"block", std::nullopt, std::nullopt, *materials});
+    const auto undone = waitFor(thread, [&](const ViewerSnapshot& s) { return *objectNamed(s, "block").materials == *materials; });
+    EXPECT_EQ(*objectNamed(*undone, "block").materials, *materials);
+    EXPECT_NEAR(meanColor(*undone->mesh) / before, 1.0, 0.001);
+}
+
 std::uint32_t indexOf(const ViewerSnapshot& s, const std::string& name) {
     for (std::uint32_t i = 0; i < s.objects.size(); ++i)
         if (s.objects[i].name == name) return i;

@@ -101,8 +101,18 @@ public:
         std::string object;
         std::optional<glm::dvec3> emission;
         std::optional<glm::dvec3> reflectance;
+        // Not empty: the object's polygons take these materials back (what
+        // objectMaterials gave before an edit: an undo), and emission and
+        // reflectance are not used. An edit sets every polygon of an object
+        // to one value, so taking back an edit of an object of several
+        // materials needs this.
+        std::vector<std::uint32_t> restore{};
     };
     FrameStats editMaterials(const std::vector<MaterialEdit>& edits, const UpdateSettings& settings = {});
+    // The material (index in scene().materials) of each of the object's
+    // polygons, in order; empty for a punctual light. Edits add materials
+    // and never remove one, so this is the object's whole look.
+    std::vector<std::uint32_t> objectMaterials(const std::string& object) const;
     // Refines, within the settings' budget and without motion, the links an
     // earlier budget left coarse; with nothing left to refine, gives back the
     // growth slack of the link lists.
