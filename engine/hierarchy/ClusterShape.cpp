@@ -124,14 +124,14 @@ void buildShape(std::span<const ShapePart> children, ClusterShape& shape) {
             while (k < ClusterShape::kSamples &&
                    (k + 0.5) / ClusterShape::kSamples * total <= cumulative) {
                 shape.samples[k] = s;
-                shape.samples[k].weight = total / ClusterShape::kSamples;
+                shape.samples[k].weight = static_cast<float>(total / ClusterShape::kSamples);
                 ++k;
             }
         }
     // Rounding may leave the last targets unmet: they repeat the last point.
     for (; k < ClusterShape::kSamples && k > 0; ++k) {
         shape.samples[k] = shape.samples[k - 1];
-        shape.samples[k].weight = total / ClusterShape::kSamples;
+        shape.samples[k].weight = static_cast<float>(total / ClusterShape::kSamples);
     }
     shape.sampleCount = ClusterShape::kSamples;
 }

@@ -42,10 +42,12 @@ struct ClusterShape {
         glm::dvec3 normal{0.0};
         double area = 0.0;
     };
+    // Single precision, as the rays cast from it (Embree's are float): 32
+    // bytes instead of 64, 16 per cluster.
     struct Sample {
-        glm::dvec3 p{0.0};
-        glm::dvec3 normal{0.0};
-        double weight = 0.0;  // the area it stands for
+        glm::vec3 p{0.0f};
+        glm::vec3 normal{0.0f};
+        float weight = 0.0f;  // the area it stands for
         std::uint32_t polygon = 0;
     };
     using Powers = std::array<glm::dvec3, kMaxFacets>;

@@ -269,7 +269,9 @@ void Hierarchy::finishCluster(ElementId id) {
             surfaceFacets.push_back({child.normal, child.area});
             auto& samples = surfaceSamples.emplace_back();
             const auto& uv = polygonSampleParams(p.vertexCount);
-            for (int i = 0; i < 16; ++i) samples[i] = {polygonPoint(p, uv[i]), child.normal, child.area / 16.0, child.polygon};
+            for (int i = 0; i < 16; ++i)
+                samples[i] = {glm::vec3(polygonPoint(p, uv[i])), glm::vec3(child.normal), static_cast<float>(child.area / 16.0),
+                              child.polygon};
             parts.push_back({std::span(&surfaceFacets.back(), 1), std::span(samples)});
         } else {
             const ClusterShape& cs = shapes_[child.shape];

@@ -54,7 +54,8 @@ SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const Aabb& towa
     const glm::dvec3 centre = toward.center(), half = 0.5 * toward.extent();
     const auto faces = [&](const ClusterShape::Sample& q) {
         // The box's farthest corner along the normal lies in front of the plane.
-        return glm::dot(q.normal, centre - q.p) + glm::dot(glm::abs(q.normal), half) > 1e-9 * glm::length(half);
+        const glm::dvec3 n(q.normal);
+        return glm::dot(n, centre - glm::dvec3(q.p)) + glm::dot(glm::abs(n), half) > 1e-9 * glm::length(half);
     };
     std::array<int, ClusterShape::kSamples> facing{};
     int count = 0;
