@@ -984,15 +984,23 @@ RadiositySamples Engine::samples() const { return sampleRadiosity(state_->scene,
 
 MeshSnapshot Engine::snapshot(SnapshotOverlays overlays) const {
     MeshSnapshot mesh = state_->meshValid ? state_->mesh : makeRadiositySnapshot(state_->scene, state_->hierarchy);
-    auto add = [&](const std::vector<std::array<glm::dvec3, 2>>& segments, const glm::vec3& color) {
-        for (const auto& seg : segments)
-            for (const glm::dvec3& p : seg) {
+    // Every stride-th segment.
+    auto add = [&](const std::vector<std::array<glm::dvec3, 2>>& segments, const glm::vec3& color, std::size_t stride) {
+        for (std::size_t i = 0; i < segments.size(); i += stride)
+            for (const glm::dvec3& p : segments[i]) {
                 mesh.linePositions.emplace_back(p);
                 mesh.lineColors.push_back(color);
             }
     };
-    if (overlays.modifiedLinks) add(state_->updater.modifiedLinks(), glm::vec3(1.0f, 0.85f, 0.1f));
-    if (overlays.changedElements) add(state_->updater.changedOutlines(), glm::vec3(1.0f, 0.1f, 0.1f));
+    const auto& links = state_->updater.modifiedLinks();
+    mesh.modifiedLinks = links.size();
+    if (overlays.modifiedLinks) {
+        const std::size_t most = std::max<std::size_t>(1, overlays.maxLinks);
+        const std::size_t stride = std::max<std::size_t>(1, (links.size() + most - 1) / most);
+        add(links, glm::vec3(1.0f, 0.85f, 0.1f), stride);
+        mesh.modifiedLinksShown = (links.size() + stride - 1) / stride;
+    }
+    if (overlays.changedElements) add(state_->updater.changedOutlines(), glm::vec3(1.0f, 0.1f, 0.1f), 1);
     return mesh;
 }
 

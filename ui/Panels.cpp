@@ -71,6 +71,8 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("re-solves when the slider is released");
     a.exposureChanged = ImGui::SliderFloat("exposure EV", &c.exposure, -6.0f, 6.0f, "%.1f");
     a.overlaysChanged |= ImGui::Checkbox("modified links (yellow, L)", &c.showLinks);
+    if (c.showLinks && s.overlayLinksShown < s.overlayLinks)
+        ImGui::TextDisabled("  %zu of %zu drawn, evenly spread", s.overlayLinksShown, s.overlayLinks);
     a.overlaysChanged |= ImGui::Checkbox("changed elements (red, C)", &c.showChanged);
 
     ImGui::Separator();

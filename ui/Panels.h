@@ -32,6 +32,8 @@ struct PanelState {
     std::size_t moves = 0, pending = 0, linksUpdated = 0;
     double lastUpdateMs = 0.0;
     double estimatedError = 0.0;  // FrameStats::estimatedError of the last frame
+    // The modified-link overlay: links recorded by the last update, and drawn.
+    std::size_t overlayLinks = 0, overlayLinksShown = 0;
     std::vector<float> updateMs;  // the last seconds of updates, oldest first
 
     // Selection.

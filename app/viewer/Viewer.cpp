@@ -358,6 +358,10 @@ int runViewer(const ViewerOptions& options) {
             ps.linksUpdated = snap->frame.linksUpdated;
             ps.lastUpdateMs = snap->frame.totalSeconds * 1e3;
             ps.estimatedError = snap->frame.estimatedError;
+            if (snap->mesh) {
+                ps.overlayLinks = snap->mesh->modifiedLinks;
+                ps.overlayLinksShown = snap->mesh->modifiedLinksShown;
+            }
             for (const UpdateSample& u : snap->updateTimes)
                 if (u.time >= snap->updateTimes.back().time - 5.0) ps.updateMs.push_back(static_cast<float>(u.seconds * 1e3));
             const ObjectInfo* selected =

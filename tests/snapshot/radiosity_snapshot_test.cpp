@@ -4,6 +4,8 @@
 
 #include "hierarchy/Hierarchy.h"
 #include "snapshot/RadiositySnapshot.h"
+#include "radiosity/Engine.h"
+#include "support/Motion.h"
 #include "support/TestScenes.h"
 
 namespace rad {
@@ -175,6 +177,44 @@ TEST(RadiositySnapshot, TilesMeetingEdgeToEdgeShareTheirEdgeValues) {
         }
     }
     EXPECT_EQ(shared, 4) << "both corners of the shared edge, once in each tile";
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// The modified-link overlay draws at most SnapshotOverlays::maxLinks of the
+// links an update recorded, every k-th: the same segments as the full
+// overlay, spread over all of it, and it says how many there were.
+TEST(RadiositySnapshot, TheLinkOverlayIsThinnedEvenly) {
+    Engine engine(test::roomWithBlock(), EngineSettings{});
+    ASSERT_TRUE(engine.solve().converged);
+    engine.moveDynamicObject(test::translation(glm::dvec3(0.5, 0.0, 0.3)));
+    SnapshotOverlays all{true, false};
+    all.maxLinks = std::size_t(-1);
+    const MeshSnapshot full = engine.snapshot(all);
+    ASSERT_GT(full.modifiedLinks, 1000u);  // enough to thin
+    EXPECT_EQ(full.modifiedLinksShown, full.modifiedLinks);
+    ASSERT_EQ(full.linePositions.size(), 2 * full.modifiedLinks);
+
+    SnapshotOverlays thin{true, false};
+    thin.maxLinks = 300;
+    const MeshSnapshot mesh = engine.snapshot(thin);
+    EXPECT_EQ(mesh.modifiedLinks, full.modifiedLinks);
+    const std::size_t stride = (full.modifiedLinks + thin.maxLinks - 1) / thin.maxLinks;
+    ASSERT_LE(mesh.modifiedLinksShown, thin.maxLinks);
+    ASSERT_EQ(mesh.linePositions.size(), 2 * mesh.modifiedLinksShown);
+    // The last one drawn is within one stride of the end: spread over all.
+    EXPECT_GT((mesh.modifiedLinksShown - 1) * stride + stride, full.modifiedLinks - 1);
+    for (std::size_t i = 0; i < mesh.modifiedLinksShown; ++i)
+        for (int k = 0; k < 2; ++k) EXPECT_EQ(mesh.linePositions[2 * i + k], full.linePositions[2 * i * stride + k]) << i;
+    // Without the overlay nothing is drawn, but the count is still there.
+    const MeshSnapshot none = engine.snapshot();
+    EXPECT_TRUE(none.linePositions.empty());
+    EXPECT_EQ(none.modifiedLinks, full.modifiedLinks);
+    EXPECT_EQ(none.modifiedLinksShown, 0u);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 // And fixed sample points of a solution, for comparing two solutions of the
 // same scene.
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -37,11 +38,18 @@ struct MeshSnapshot {
     // Overlay line segments: pairs of points, one colour per point.
     std::vector<glm::vec3> linePositions;
     std::vector<glm::vec3> lineColors;
+    // The modified links the last update recorded, and how many of them are
+    // drawn (every k-th, at most SnapshotOverlays::maxLinks).
+    std::size_t modifiedLinks = 0, modifiedLinksShown = 0;
 };
 
 struct SnapshotOverlays {
     bool modifiedLinks = false;
     bool changedElements = false;
+    // Modified links drawn at most, spread evenly over those recorded: each
+    // runs across the scene, and a software rasteriser (lavapipe) takes about
+    // half a second for 30,000 of them (README, "Known limits").
+    std::size_t maxLinks = 5'000;
 };
 
 struct Scene;
