@@ -14,15 +14,7 @@ double ClusterShape::projectedArea(const glm::dvec3& dir) const {
     return a;
 }
 
-ClusterShape::Arrivals& ClusterShape::Arrivals::operator+=(const Arrivals& o) {
-    for (int k = 0; k < kMaxFacets; ++k) {
-        irradiance[k] += o.irradiance[k];
-        formFactorSum[k] += o.formFactorSum[k];
-    }
-    return *this;
-}
-
-glm::dvec3 ClusterShape::radiosityToward(const glm::dvec3& dir, const Powers& powers) const {
+glm::dvec3 ClusterShape::radiosityToward(const glm::dvec3& dir, std::span<const glm::dvec3> powers) const {
     glm::dvec3 sent(0.0);
     double area = 0.0;
     for (int k = 0; k < facetCount; ++k) {
@@ -35,11 +27,29 @@ glm::dvec3 ClusterShape::radiosityToward(const glm::dvec3& dir, const Powers& po
     return area > 0.0 ? sent / area : glm::dvec3(0.0);
 }
 
-double ClusterShape::peakLuminance(const Powers& powers) const {
+double ClusterShape::peakLuminance(std::span<const glm::dvec3> powers) const {
     double peak = 0.0;
     for (int k = 0; k < facetCount; ++k)
         if (facets[k].area > 0.0) peak = std::max(peak, luminance(powers[k]) / facets[k].area);
     return peak;
+}
+
+void ClusterShape::keepOwn(const Arrivals& own) {
+    ownIrradiance.assign(own.irradiance.begin(), own.irradiance.begin() + facetCount);
+    ownFormFactorSum.assign(own.formFactorSum.begin(), own.formFactorSum.begin() + facetCount);
+    ownValid = true;
+}
+
+void ClusterShape::addOwn(Arrivals& arrivals) const {
+    for (int k = 0; k < facetCount; ++k) {
+        arrivals.irradiance[k] += ownIrradiance[k];
+        arrivals.formFactorSum[k] += ownFormFactorSum[k];
+    }
+}
+
+std::size_t ClusterShape::heapBytes() const {
+    return facets.capacity() * sizeof(Facet) + (power.capacity() + gathered.capacity() + ownIrradiance.capacity()) * sizeof(glm::dvec3) +
+           ownFormFactorSum.capacity() * sizeof(double) + childFacet.capacity();
 }
 
 void buildShape(std::span<const ShapePart> children, ClusterShape& shape) {
@@ -95,6 +105,7 @@ void buildShape(std::span<const ShapePart> children, ClusterShape& shape) {
         }
     }
     shape.facetCount = static_cast<int>(merged.size());
+    shape.facets.assign(merged.size(), ClusterShape::Facet{});
     for (std::size_t k = 0; k < merged.size(); ++k) {
         // Opposite normals merged to nothing keep the direction of the first.
         glm::dvec3 fallback(0.0, 1.0, 0.0);

@@ -19,6 +19,7 @@
 // (the in-place gather of eq. 1, 2 works on it as on a surface's B).
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
@@ -34,7 +35,6 @@ struct ClusterShape {
     struct Arrivals {
         std::array<glm::dvec3, kMaxFacets> irradiance{};
         std::array<double, kMaxFacets> formFactorSum{};
-        Arrivals& operator+=(const Arrivals& o);
     };
     static constexpr int kSamples = 16;
 
@@ -50,9 +50,13 @@ struct ClusterShape {
         float weight = 0.0f;  // the area it stands for
         std::uint32_t polygon = 0;
     };
+    // A value per facet, of fixed size: for temporaries.
     using Powers = std::array<glm::dvec3, kMaxFacets>;
 
-    std::array<Facet, kMaxFacets> facets{};
+    // The facets and their solution state below are sized to the facets a
+    // cluster has (4.5 of the 12 on average in `office`): 12 each would take
+    // 800 bytes more per cluster, 3 bytes per link.
+    std::vector<Facet> facets;
     int facetCount = 0;
     std::array<Sample, kSamples> samples{};
     int sampleCount = 0;
@@ -60,13 +64,15 @@ struct ClusterShape {
     // surface), the facet of this cluster it belongs to.
     std::vector<std::uint8_t> childFacet;
 
-    Powers power{};     // per facet: sum of B A over its members
-    Powers gathered{};  // the power the receivers of its links hold
-    // What its own active links bring, as a surface keeps its irradiance:
-    // summed from the links again when not valid (its links or its facets
-    // changed), added to by further bounces (sec. 5.3.2) so that a bounce
-    // costs its transfers, not a walk over every link of the cluster.
-    Arrivals own{};
+    std::vector<glm::dvec3> power;     // per facet: sum of B A over its members
+    std::vector<glm::dvec3> gathered;  // the power the receivers of its links hold
+    // What its own active links bring (Arrivals, per facet), as a surface
+    // keeps its irradiance: summed from the links again when not valid (its
+    // links or its facets changed), added to by further bounces (sec. 5.3.2)
+    // so that a bounce costs its transfers, not a walk over every link of
+    // the cluster.
+    std::vector<glm::dvec3> ownIrradiance;
+    std::vector<double> ownFormFactorSum;
     bool ownValid = false;
 
     // sum_k A_k max(0, n_k . dir), dir a unit vector.
@@ -74,9 +80,14 @@ struct ClusterShape {
     // The radiosity the cluster sends toward dir (unit): the facets' powers
     // weighted by their projected areas, over the projected area; zero when
     // no facet faces dir.
-    glm::dvec3 radiosityToward(const glm::dvec3& dir, const Powers& powers) const;
+    glm::dvec3 radiosityToward(const glm::dvec3& dir, std::span<const glm::dvec3> powers) const;
     // The largest radiosity luminance of a facet (a bound on what it sends).
-    double peakLuminance(const Powers& powers) const;
+    double peakLuminance(std::span<const glm::dvec3> powers) const;
+    // Keeps `own` as what its own links bring (ownValid), and adds that to `arrivals`.
+    void keepOwn(const Arrivals& own);
+    void addOwn(Arrivals& arrivals) const;
+    // Bytes its facet and child-facet vectors hold.
+    std::size_t heapBytes() const;
 };
 
 // What a child contributes to a shape: its facets and its sample points.

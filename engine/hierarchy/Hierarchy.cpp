@@ -219,15 +219,15 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
     e.object = p.object;
     e.patch.n = p.vertexCount;
     for (int i = 0; i < p.vertexCount; ++i) e.patch.v[i] = p.vertices[i];
-    e.param = p.vertexCount == 3 ? std::array<glm::dvec2, 4>{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(0)}
-                                 : std::array<glm::dvec2, 4>{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)};
+    e.param = p.vertexCount == 3 ? std::array<glm::vec2, 4>{glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(0, 1), glm::vec2(0)}
+                                 : std::array<glm::vec2, 4>{glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)};
     e.normal = p.normal();
     e.area = p.area();
     e.center = patchCentroid(e.patch);
     ElementBounds bounds;
     for (int i = 0; i < p.vertexCount; ++i) bounds.box.extend(p.vertices[i]);
     const Material& m = scene.materials[p.material];
-    e.reflectance = surfaceReflectance(scene, polygon, e.param);
+    e.reflectance = surfaceReflectance(scene, polygon, e.corners());
     e.emission = m.emission;
     const ElementId id = add(std::move(e), bounds);
     polygonElements_[polygon] = id;
@@ -326,7 +326,7 @@ void Hierarchy::pullPower(ElementId id) {
             for (int f = 0; f < cs.facetCount; ++f) power[shape.childFacet[entry++]] += cs.power[f];
         }
     }
-    shape.power = power;
+    shape.power.assign(power.begin(), power.begin() + shape.facetCount);
 }
 
 std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool renumber) {
@@ -404,7 +404,7 @@ void Hierarchy::subdivide(ElementId id) {
     // Parametric corners of the four children. Quads: the four sub-squares.
     // Triangles: three corner triangles and the middle one (same winding).
     std::array<std::array<glm::dvec2, 4>, 4> params;
-    const auto& q = parent.param;
+    const std::array<glm::dvec2, 4> q = parent.corners();
     if (parent.patch.n == 4) {
         const glm::dvec2 m01 = 0.5 * (q[0] + q[1]), m12 = 0.5 * (q[1] + q[2]), m23 = 0.5 * (q[2] + q[3]),
                          m30 = 0.5 * (q[3] + q[0]), mc = 0.25 * (q[0] + q[1] + q[2] + q[3]);
@@ -421,7 +421,7 @@ void Hierarchy::subdivide(ElementId id) {
         c.polygon = parent.polygon;
         c.object = parent.object;
         c.depth = static_cast<std::uint8_t>(parent.depth + 1);
-        c.param = params[k];
+        for (int i = 0; i < 4; ++i) c.param[i] = glm::vec2(params[k][i]);
         c.patch.n = parent.patch.n;
         c.normal = parent.normal;
         c.reflectance = surfaceReflectance(scene_, parent.polygon, params[k]);
@@ -464,7 +464,7 @@ void Hierarchy::updateGeometry(ElementId id) {
     HElement& e = elements_[id];
     if (e.isSurface()) {
         const Polygon& p = scene_.polygons[e.polygon];
-        for (int i = 0; i < e.patch.n; ++i) e.patch.v[i] = polygonPoint(p, e.param[i]);
+        for (int i = 0; i < e.patch.n; ++i) e.patch.v[i] = polygonPoint(p, glm::dvec2(e.param[i]));
         e.normal = p.normal();
         e.area = polygonArea(e.patch);
         Aabb& box = bounds_[id].box;
@@ -487,7 +487,7 @@ namespace {
 // Whether uv lies in the convex parametric polygon of an element (edges count).
 bool paramContains(const HElement& e, const glm::dvec2& uv) {
     for (int k = 0; k < e.patch.n; ++k) {
-        const glm::dvec2 a = e.param[k], b = e.param[(k + 1) % e.patch.n];
+        const glm::dvec2 a(e.param[k]), b(e.param[(k + 1) % e.patch.n]);
         if ((b.x - a.x) * (uv.y - a.y) - (b.y - a.y) * (uv.x - a.x) < -1e-12) return false;
     }
     return true;
@@ -538,7 +538,7 @@ std::size_t Hierarchy::memoryBytes() const {
     std::size_t bytes = elements_.capacity() * sizeof(HElement) + bounds_.capacity() * sizeof(ElementBounds) +
                         free_.capacity() * sizeof(ElementId) +
                         shapes_.capacity() * sizeof(ClusterShape) + freeShapes_.capacity() * sizeof(std::uint32_t);
-    for (const ClusterShape& s : shapes_) bytes += s.childFacet.capacity();
+    for (const ClusterShape& s : shapes_) bytes += s.heapBytes();
     for (const HElement& e : elements_)
         bytes += (e.children.capacity() + e.links.capacity() + e.plinks.capacity() + e.outLinks.capacity() +
                   e.outPlinks.capacity()) *

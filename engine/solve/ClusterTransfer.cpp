@@ -22,7 +22,7 @@ glm::dvec3 sentRadiosity(const Hierarchy& h, const Link& link) {
 }
 
 glm::dvec3 sentChange(const Hierarchy& h, const Link& link, const glm::dvec3& surfaceChange,
-                      const ClusterShape::Powers& facetChange) {
+                      std::span<const glm::dvec3> facetChange) {
     if (h[link.source].isSurface()) return surfaceChange;
     return h.shape(link.source)
         .radiosityToward(centreDirection(h, link.source, link.receiver), facetChange);
@@ -124,7 +124,7 @@ void addTransfer(Hierarchy& h, ElementId cluster, ElementId source, const glm::d
     const glm::dvec3 u = centreDirection(h, cluster, source);
     for (int k = 0; k < shape.facetCount; ++k) {
         const double c = glm::dot(shape.facets[k].normal, u);
-        if (c > 0.0) shape.own.irradiance[k] += c * irradiance;
+        if (c > 0.0) shape.ownIrradiance[k] += c * irradiance;
     }
 }
 

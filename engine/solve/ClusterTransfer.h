@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <span>
 #include <vector>
 
 #include "hierarchy/Hierarchy.h"
@@ -35,7 +36,7 @@ glm::dvec3 sentRadiosity(const Hierarchy& h, const Link& link);
 // The same for a change of the source's state: a surface's change of B, or a
 // cluster's change of facet powers.
 glm::dvec3 sentChange(const Hierarchy& h, const Link& link, const glm::dvec3& surfaceChange,
-                      const ClusterShape::Powers& facetChange);
+                      std::span<const glm::dvec3> facetChange);
 
 // A source element as a few points for quadrature over its area: a surface's
 // 2 x 2 Gauss points, a cluster's sample points on surfaces that face some

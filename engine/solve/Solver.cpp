@@ -71,12 +71,12 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
     if (!e.isSurface()) {
         ClusterShape& shape = h_.shape(id);
         if (!shape.ownValid) {
-            shape.own = FacetArrivals{};
-            addArrivals(h_, links_, id, shape.own);
-            shape.ownValid = true;
+            FacetArrivals own{};
+            addArrivals(h_, links_, id, own);
+            shape.keepOwn(own);
         }
         FacetArrivals arrivals = facets;
-        arrivals += shape.own;
+        shape.addOwn(arrivals);
         const std::vector<ElementId>& children = e.children;
         // What each child inherits from this cluster's facets, in order.
         std::vector<Down> surfaceDown(children.size());

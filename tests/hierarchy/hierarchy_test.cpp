@@ -1,6 +1,7 @@
 // The H-element hierarchy: attaching an object's cluster to the root (paper
 // sec. 3.3) must leave a well-formed tree, with index ranges that still nest
-// (sec. 3.2) and cluster boxes and areas that still enclose their children.
+// (sec. 3.2) and cluster boxes and areas that still enclose their children,
+// and cluster shapes whose facets are sized to them and hold their area.
 
 #include <gtest/gtest.h>
 
@@ -48,6 +49,15 @@ std::size_t checkSubtree(const Hierarchy& h, ElementId id, std::string& problem)
     if (!e.isSurface()) {
         if (e.children.empty()) problem = "cluster " + std::to_string(id) + " is empty";
         if (std::abs(area - e.area) > 1e-9 * std::max(1.0, area)) problem = "cluster " + std::to_string(id) + ": area";
+        // Its facets, sized to the cluster, hold every member's area once.
+        const ClusterShape& shape = h.shape(id);
+        const auto n = static_cast<std::size_t>(shape.facetCount);
+        if (n < 1 || n > ClusterShape::kMaxFacets || shape.facets.size() != n || shape.power.size() != n ||
+            shape.gathered.size() != n)
+            problem = "cluster " + std::to_string(id) + ": facets not sized to its " + std::to_string(n);
+        double facetArea = 0.0;
+        for (const ClusterShape::Facet& f : shape.facets) facetArea += f.area;
+        if (std::abs(facetArea - e.area) > 1e-9 * std::max(1.0, area)) problem = "cluster " + std::to_string(id) + ": facet areas";
     }
     return count;
 }
