@@ -83,8 +83,9 @@ struct ClusterShape {
     glm::dvec3 radiosityToward(const glm::dvec3& dir, std::span<const glm::dvec3> powers) const;
     // The largest radiosity luminance of a facet (a bound on what it sends).
     double peakLuminance(std::span<const glm::dvec3> powers) const;
-    // Keeps `own` as what its own links bring (ownValid), and adds that to `arrivals`.
+    // Keeps `own` as what its own links bring (and sets ownValid).
     void keepOwn(const Arrivals& own);
+    // Adds what its own links bring to `arrivals`.
     void addOwn(Arrivals& arrivals) const;
     // Bytes its facet and child-facet vectors hold.
     std::size_t heapBytes() const;

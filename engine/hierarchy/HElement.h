@@ -55,7 +55,9 @@ struct HElement {
     // by the parametric corners (u,v) of that polygon (barycentric-like for
     // triangles), which the display uses to find shared vertices.
     // Single precision: the corners are dyadic fractions (halves of halves),
-    // exact in a float down to 23 levels, far below any area threshold.
+    // exact in a float's 24-bit mantissa down to kMaxDepth levels: elements
+    // of 4^-24 (about 4e-15) of the polygon's area, far below any useful
+    // area threshold (the index ranges would allow 31 levels).
     PatchGeometry patch;
     std::array<glm::vec2, 4> param{};
     std::uint32_t polygon = kNone;
@@ -82,7 +84,7 @@ struct HElement {
     // that finer links leave uncovered).
     double coverage = 0.0;
     // Surfaces: the irradiance punctual lights send through the light links
-    // that end here (lights/LightLinks.h), and whether any does.
+    // that end here (lights/LightLinks.h); `lit` says whether any does.
     glm::dvec3 direct{0.0};
     glm::dvec3 radiosity{0.0};   // B; for clusters the area-weighted mean below
     // Surfaces: the largest luminance of B among the leaves below (a leaf's
@@ -112,6 +114,7 @@ struct HElement {
     std::vector<LinkId> outLinks;
     std::vector<LinkId> outPlinks;
 
+    static constexpr int kMaxDepth = 24;  // quadtree levels below a polygon
     bool isLeaf() const { return children.empty(); }
     // The parametric corners in double precision, for computing with them.
     std::array<glm::dvec2, 4> corners() const {

@@ -394,7 +394,7 @@ void Hierarchy::attachToRoot(ElementId cluster) {
 
 bool Hierarchy::canSubdivide(ElementId id) const {
     const HElement& e = elements_[id];
-    return e.isSurface() && bounds_[id].range.size() > 1;
+    return e.isSurface() && bounds_[id].range.size() > 1 && e.depth < HElement::kMaxDepth;
 }
 
 void Hierarchy::subdivide(ElementId id) {

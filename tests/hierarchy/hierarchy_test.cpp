@@ -118,3 +118,49 @@ TEST(Hierarchy, AttachToRootFreesTheClustersItEmpties) {
 
 }  // namespace
 }  // namespace rad
+
+namespace rad {
+namespace {
+
+// Parametric corners are single precision: exact for dyadic fractions down
+// to HElement::kMaxDepth levels. An area threshold that would allow deeper
+// quadtrees stops there, and the deepest corners are still exact.
+TEST(Hierarchy, SubdivisionStopsWhereFloatCornersStayExact) {
+    using V = glm::dvec3;
+    for (int corners : {4, 3}) {
+        Scene s;
+        const auto m = test::addMaterial(s, V(0.5), V(0.0));
+        if (corners == 4) {
+            test::addQuadObject(s, "quad", m, {{V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)}});
+        } else {
+            Object o;
+            o.name = "triangle";
+            o.firstPolygon = 0;
+            o.polygonCount = 1;
+            s.objects.push_back(o);
+            Polygon p;
+            p.vertexCount = 3;
+            p.vertices = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(0)};
+            p.material = m;
+            s.polygons.push_back(p);
+        }
+        Hierarchy h(s, 1e-18);  // the index ranges allow 29 levels
+        ElementId e = h.polygonElement(0);
+        int depth = 0;
+        while (h.canSubdivide(e)) {
+            h.subdivide(e);
+            e = h[e].children[3];  // the middle triangle, or a quad's last corner
+            ++depth;
+        }
+        EXPECT_EQ(depth, HElement::kMaxDepth) << corners << " corners";
+        for (const glm::vec2& c : h[e].param)
+            for (int k = 0; k < 2; ++k) {
+                const double scaled = std::ldexp(double(c[k]), HElement::kMaxDepth);
+                EXPECT_EQ(scaled, std::round(scaled)) << corners << " corners";
+            }
+        EXPECT_GT(h[e].area, 0.0);
+    }
+}
+
+}  // namespace
+}  // namespace rad
