@@ -817,7 +817,7 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
     // Idle with nothing left to refine: the link lists give back the growth
     // slack the moves left them.
     if (f.pending == 0) {
-        s.hierarchy.compact();
+        s.hierarchy.compact(0.25);
         s.links.compact();
     }
     s.buildMesh(f, settings.deadlineSeconds);

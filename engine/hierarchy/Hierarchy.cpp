@@ -516,21 +516,25 @@ void Hierarchy::refreshAncestors(ElementId id) {
     for (ElementId a = elements_[id].parent; a != kNone; a = elements_[a].parent) finishCluster(a);
 }
 
-void Hierarchy::compact() {
-    // Only slack worth a copy is given back: moving every list and element
-    // costs more than a solve's last sweeps.
-    const auto shrink = [](auto& v, std::size_t slack) {
-        if (v.capacity() - v.size() > slack + v.size() / 4) v.shrink_to_fit();
+void Hierarchy::compact(double slack) {
+    // After a solve (slack 0) every list and array is made exact: with the
+    // 25% of slack kept before, `office` held 1.3 bytes per link more, and
+    // the copies cost the same 67 ms there (in the building floor, a 15 s
+    // solve, 0.96 s instead of 0.51 s). Idle frames keep some slack, so that
+    // the lists a drag grows are not copied back and forth.
+    const auto shrink = [slack](auto& v, std::size_t spare) {
+        if (double(v.capacity() - v.size()) > double(spare) + slack * double(v.size())) v.shrink_to_fit();
     };
+    const std::size_t spare = slack > 0.0 ? 4 : 0;
     shrink(elements_, 0);
     shrink(bounds_, 0);
     shrink(shapes_, 0);
     tbb::parallel_for(std::size_t(0), elements_.size(), [&](std::size_t i) {
         HElement& e = elements_[i];
-        shrink(e.links, 4);
-        shrink(e.plinks, 4);
-        shrink(e.outLinks, 4);
-        shrink(e.outPlinks, 4);
+        shrink(e.links, spare);
+        shrink(e.plinks, spare);
+        shrink(e.outLinks, spare);
+        shrink(e.outPlinks, spare);
     });
 }
 

@@ -100,8 +100,9 @@ public:
     // Recomputes the boxes, areas and centres of the clusters above `id`.
     void refreshAncestors(ElementId id);
 
-    // Drops the growth slack of the element array and the link lists.
-    void compact();
+    // Drops the growth slack of the element arrays and the link lists: all
+    // of it, or where a list holds more than `slack` of its size (and 4) spare.
+    void compact(double slack = 0.0);
 
     // Bytes held by elements and their link lists.
     std::size_t memoryBytes() const;
