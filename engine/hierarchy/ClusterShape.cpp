@@ -14,7 +14,8 @@ double ClusterShape::projectedArea(const glm::dvec3& dir) const {
     return a;
 }
 
-glm::dvec3 ClusterShape::radiosityToward(const glm::dvec3& dir, std::span<const glm::dvec3> powers) const {
+glm::dvec3 ClusterShape::radiosityToward(const glm::dvec3& dir,
+                                         std::span<const glm::dvec3> powers) const {
     glm::dvec3 sent(0.0);
     double area = 0.0;
     for (int k = 0; k < facetCount; ++k) {
@@ -48,7 +49,9 @@ void ClusterShape::addOwn(Arrivals& arrivals) const {
 }
 
 std::size_t ClusterShape::heapBytes() const {
-    return facets.capacity() * sizeof(Facet) + (power.capacity() + gathered.capacity() + ownIrradiance.capacity()) * sizeof(glm::dvec3) +
+    return facets.capacity() * sizeof(Facet) +
+           (power.capacity() + gathered.capacity() + ownIrradiance.capacity()) *
+               sizeof(glm::dvec3) +
            ownFormFactorSum.capacity() * sizeof(double) + childFacet.capacity();
 }
 
