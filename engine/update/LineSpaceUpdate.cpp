@@ -1,8 +1,10 @@
 #include "update/LineSpaceUpdate.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <functional>
+#include <tuple>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -94,11 +96,24 @@ void LineSpaceUpdate::recordOverlay(const std::vector<ElementId>& changed, bool 
         if (!l.live) continue;
         modifiedSegments_.push_back({h_[l.source].center, h_[l.receiver].center});
     }
+    // The outlines of the changed leaves (a changed parent's area is its
+    // changed leaves'), each edge once: neighbours of one polygon share
+    // edges, and a software rasteriser pays for every line.
+    const auto key = [](const glm::dvec3& p) { return std::tie(p.x, p.y, p.z); };
     for (ElementId e : changed) {
         const HElement& el = h_[e];
-        if (!el.isSurface() || changedSegments_.size() >= kMaxSegments) continue;
-        for (int k = 0; k < el.patch.n; ++k) changedSegments_.push_back({el.patch.v[k], el.patch.v[(k + 1) % el.patch.n]});
+        if (!el.isSurface() || !el.isLeaf() || changedSegments_.size() >= kMaxSegments) continue;
+        for (int k = 0; k < el.patch.n; ++k) {
+            std::array<glm::dvec3, 2> edge{el.patch.v[k], el.patch.v[(k + 1) % el.patch.n]};
+            if (key(edge[1]) < key(edge[0])) std::swap(edge[0], edge[1]);
+            changedSegments_.push_back(edge);
+        }
     }
+    std::sort(changedSegments_.begin(), changedSegments_.end(), [&](const auto& a, const auto& b) {
+        return std::tie(a[0].x, a[0].y, a[0].z, a[1].x, a[1].y, a[1].z) <
+               std::tie(b[0].x, b[0].y, b[0].z, b[1].x, b[1].y, b[1].z);
+    });
+    changedSegments_.erase(std::unique(changedSegments_.begin(), changedSegments_.end()), changedSegments_.end());
 }
 
 std::size_t LineSpaceUpdate::reinstateUnneeded() {

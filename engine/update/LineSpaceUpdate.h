@@ -110,7 +110,8 @@ public:
 
     // What the last frame touched, for display (paper Fig. 5 b, c): the links
     // it modified (the centres of their two H-elements) and the surface
-    // elements the traversal marked changed (their outlines), as segments.
+    // leaves the push-pull changed (their outlines, each edge once), as
+    // segments.
     const std::vector<std::array<glm::dvec3, 2>>& modifiedLinks() const { return modifiedSegments_; }
     const std::vector<std::array<glm::dvec3, 2>>& changedOutlines() const { return changedSegments_; }
 

@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <tuple>
 
 #include "hierarchy/Hierarchy.h"
 #include "snapshot/RadiositySnapshot.h"
@@ -215,6 +218,26 @@ TEST(RadiositySnapshot, TheLinkOverlayIsThinnedEvenly) {
     EXPECT_TRUE(none.linePositions.empty());
     EXPECT_EQ(none.modifiedLinks, full.modifiedLinks);
     EXPECT_EQ(none.modifiedLinksShown, 0u);
+}
+
+// The changed-element overlay outlines the changed leaves, each edge once
+// whichever of its two neighbours it came from.
+TEST(RadiositySnapshot, ChangedOutlinesDrawEachEdgeOnce) {
+    Engine engine(test::roomWithBlock(), EngineSettings{});
+    ASSERT_TRUE(engine.solve().converged);
+    engine.moveDynamicObject(test::translation(glm::dvec3(0.5, 0.0, 0.3)));
+    SnapshotOverlays outlines{false, true};
+    const MeshSnapshot mesh = engine.snapshot(outlines);
+    ASSERT_GT(mesh.linePositions.size(), 100u);
+    ASSERT_EQ(mesh.linePositions.size() % 2, 0u);
+    std::vector<std::array<float, 6>> edges;
+    for (std::size_t i = 0; i < mesh.linePositions.size(); i += 2) {
+        glm::vec3 a = mesh.linePositions[i], b = mesh.linePositions[i + 1];
+        if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) std::swap(a, b);
+        edges.push_back({a.x, a.y, a.z, b.x, b.y, b.z});
+    }
+    std::sort(edges.begin(), edges.end());
+    EXPECT_EQ(std::adjacent_find(edges.begin(), edges.end()), edges.end()) << "an edge drawn twice";
 }
 
 }  // namespace
