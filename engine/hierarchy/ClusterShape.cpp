@@ -9,7 +9,7 @@ namespace rad {
 
 double ClusterShape::projectedArea(const glm::dvec3& dir) const {
     double a = 0.0;
-    for (int k = 0; k < facetCount; ++k)
+    for (int k = 0; k < facetCount(); ++k)
         a += facets[k].area * std::max(0.0, glm::dot(facets[k].normal, dir));
     return a;
 }
@@ -18,7 +18,7 @@ glm::dvec3 ClusterShape::radiosityToward(const glm::dvec3& dir,
                                          std::span<const glm::dvec3> powers) const {
     glm::dvec3 sent(0.0);
     double area = 0.0;
-    for (int k = 0; k < facetCount; ++k) {
+    for (int k = 0; k < facetCount(); ++k) {
         const double c = std::max(0.0, glm::dot(facets[k].normal, dir));
         if (c <= 0.0 || facets[k].area <= 0.0) continue;
         // A facet's B is its power over its area; weighted by its projected area A c.
@@ -30,19 +30,19 @@ glm::dvec3 ClusterShape::radiosityToward(const glm::dvec3& dir,
 
 double ClusterShape::peakLuminance(std::span<const glm::dvec3> powers) const {
     double peak = 0.0;
-    for (int k = 0; k < facetCount; ++k)
+    for (int k = 0; k < facetCount(); ++k)
         if (facets[k].area > 0.0) peak = std::max(peak, luminance(powers[k]) / facets[k].area);
     return peak;
 }
 
 void ClusterShape::keepOwn(const Arrivals& own) {
-    ownIrradiance.assign(own.irradiance.begin(), own.irradiance.begin() + facetCount);
-    ownFormFactorSum.assign(own.formFactorSum.begin(), own.formFactorSum.begin() + facetCount);
+    ownIrradiance.assign(own.irradiance.begin(), own.irradiance.begin() + facetCount());
+    ownFormFactorSum.assign(own.formFactorSum.begin(), own.formFactorSum.begin() + facetCount());
     ownValid = true;
 }
 
 void ClusterShape::addOwn(Arrivals& arrivals) const {
-    for (int k = 0; k < facetCount; ++k) {
+    for (int k = 0; k < facetCount(); ++k) {
         arrivals.irradiance[k] += ownIrradiance[k];
         arrivals.formFactorSum[k] += ownFormFactorSum[k];
     }
@@ -107,7 +107,6 @@ void buildShape(std::span<const ShapePart> children, ClusterShape& shape) {
                 --o;
         }
     }
-    shape.facetCount = static_cast<int>(merged.size());
     shape.facets.assign(merged.size(), ClusterShape::Facet{});
     for (std::size_t k = 0; k < merged.size(); ++k) {
         // Opposite normals merged to nothing keep the direction of the first.

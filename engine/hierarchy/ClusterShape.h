@@ -57,7 +57,7 @@ struct ClusterShape {
     // cluster has (4.5 of the 12 on average in `office`): 12 each would take
     // 800 bytes more per cluster, 3 bytes per link.
     std::vector<Facet> facets;
-    int facetCount = 0;
+    int facetCount() const { return static_cast<int>(facets.size()); }
     std::array<Sample, kSamples> samples{};
     int sampleCount = 0;
     // For each child in order, and each facet of that child (one for a

@@ -275,17 +275,17 @@ void Hierarchy::finishCluster(ElementId id) {
             parts.push_back({std::span(&surfaceFacets.back(), 1), std::span(samples)});
         } else {
             const ClusterShape& cs = shapes_[child.shape];
-            parts.push_back({std::span(cs.facets.data(), cs.facetCount), std::span(cs.samples.data(), cs.sampleCount)});
+            parts.push_back({std::span(cs.facets), std::span(cs.samples.data(), cs.sampleCount)});
         }
     }
     ClusterShape& shape = shapes_[c.shape];
-    const int facetsBefore = shape.facetCount;
+    const int facetsBefore = shape.facetCount();
     const std::vector<std::uint8_t> mapBefore = shape.childFacet;
     buildShape(parts, shape);
     pullPower(id);
     // What receivers hold stays valid while the facets stand for the same
     // surfaces (a rigid move); otherwise it starts from the current powers.
-    if (shape.facetCount != facetsBefore || shape.childFacet != mapBefore) shape.gathered = shape.power;
+    if (shape.facetCount() != facetsBefore || shape.childFacet != mapBefore) shape.gathered = shape.power;
     shape.ownValid = false;  // its facets and centre moved: summed again from its links
 }
 
@@ -323,10 +323,10 @@ void Hierarchy::pullPower(ElementId id) {
             power[shape.childFacet[entry++]] += child.radiosity * child.area;
         } else {
             const ClusterShape& cs = shapes_[child.shape];
-            for (int f = 0; f < cs.facetCount; ++f) power[shape.childFacet[entry++]] += cs.power[f];
+            for (int f = 0; f < cs.facetCount(); ++f) power[shape.childFacet[entry++]] += cs.power[f];
         }
     }
-    shape.power.assign(power.begin(), power.begin() + shape.facetCount);
+    shape.power.assign(power.begin(), power.begin() + shape.facetCount());
 }
 
 std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool renumber) {

@@ -53,8 +53,8 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, MeshSnaps
     int maxDepth = 0;
     for (ElementId l : leaves) maxDepth = std::max<int>(maxDepth, h[l].depth);
     const double scale = std::ldexp(1.0, maxDepth);
-    auto lattice = [&](const glm::dvec2& uv) {
-        return LatticePoint{std::llround(uv.x * scale), std::llround(uv.y * scale)};
+    auto lattice = [&](const glm::vec2& uv) {
+        return LatticePoint{std::llround(double(uv.x) * scale), std::llround(double(uv.y) * scale)};
     };
 
     std::vector<Vertex>& corners = scratch.corners;
@@ -62,7 +62,7 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, MeshSnaps
     for (ElementId l : leaves) {
         const HElement& e = h[l];
         for (int k = 0; k < e.patch.n; ++k)
-            corners.push_back({lattice(glm::dvec2(e.param[k])), e.area * e.radiosity, e.area, e.patch.v[k], {}, e.area * e.reflectance});
+            corners.push_back({lattice(e.param[k]), e.area * e.radiosity, e.area, e.patch.v[k], {}, e.area * e.reflectance});
     }
     std::sort(corners.begin(), corners.end(), [](const Vertex& a, const Vertex& b) { return a.p < b.p; });
     std::vector<Vertex>& vertices = scratch.vertices;  // one per lattice point, in lattice order
@@ -89,7 +89,7 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, MeshSnaps
     for (ElementId l : leaves) {
         const HElement& e = h[l];
         for (int k = 0; k < e.patch.n; ++k) {
-            const LatticePoint a = lattice(glm::dvec2(e.param[k])), b = lattice(glm::dvec2(e.param[(k + 1) % e.patch.n]));
+            const LatticePoint a = lattice(e.param[k]), b = lattice(e.param[(k + 1) % e.patch.n]);
             const std::int64_t n = std::max(std::llabs(b.i - a.i), std::llabs(b.j - a.j));
             if (n < 2) continue;
             const glm::dvec3 va = find(a)->value, vb = find(b)->value;
@@ -141,7 +141,7 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, MeshSnaps
         const HElement& e = h[l];
         std::array<std::uint32_t, 4> idx{};
         for (int k = 0; k < e.patch.n; ++k)
-            idx[k] = base + static_cast<std::uint32_t>(find(lattice(glm::dvec2(e.param[k]))) - vertices.begin());
+            idx[k] = base + static_cast<std::uint32_t>(find(lattice(e.param[k])) - vertices.begin());
         for (int k = 1; k + 1 < e.patch.n; ++k) mesh.indices.insert(mesh.indices.end(), {idx[0], idx[k], idx[k + 1]});
     }
 }

@@ -109,7 +109,7 @@ void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
         if (l.gathered == 0.0) continue;
         const glm::dvec3 u = centreDirection(h, cluster, l.source);
         const glm::dvec3 sent = sentRadiosity(h, l);
-        for (int k = 0; k < shape.facetCount; ++k) {
+        for (int k = 0; k < shape.facetCount(); ++k) {
             const double c = glm::dot(shape.facets[k].normal, u);
             if (c <= 0.0) continue;  // one-sided: facing away, it gets none
             arrivals.irradiance[k] += c * l.gathered * sent;
@@ -122,7 +122,7 @@ void addTransfer(Hierarchy& h, ElementId cluster, ElementId source, const glm::d
     ClusterShape& shape = h.shape(cluster);
     if (!shape.ownValid) return;
     const glm::dvec3 u = centreDirection(h, cluster, source);
-    for (int k = 0; k < shape.facetCount; ++k) {
+    for (int k = 0; k < shape.facetCount(); ++k) {
         const double c = glm::dot(shape.facets[k].normal, u);
         if (c > 0.0) shape.ownIrradiance[k] += c * irradiance;
     }
@@ -131,7 +131,7 @@ void addTransfer(Hierarchy& h, ElementId cluster, ElementId source, const glm::d
 FacetArrivals ChildArrivals::cluster(ElementId child) {
     FacetArrivals out;
     const ClusterShape& childShape = h_.shape(child);
-    for (int j = 0; j < childShape.facetCount; ++j) {
+    for (int j = 0; j < childShape.facetCount(); ++j) {
         const std::uint8_t k = shape_.childFacet[entry_++];
         out.irradiance[j] = arrivals_.irradiance[k];
         out.formFactorSum[j] = arrivals_.formFactorSum[k];

@@ -124,7 +124,7 @@ std::size_t clearNonFinite(Hierarchy& h) {
         clear(el.gathered);
         if (el.shape == kNone) continue;
         ClusterShape& shape = h.shape(e);
-        for (int k = 0; k < shape.facetCount; ++k) {
+        for (int k = 0; k < shape.facetCount(); ++k) {
             clear(shape.power[k]);
             clear(shape.gathered[k]);
         }

@@ -165,7 +165,7 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
         }
         // A cluster sends by facet: any facet's radiosity that moved.
         const ClusterShape& shape = h_.shape(id);
-        for (int k = 0; k < shape.facetCount && !sends[i]; ++k)
+        for (int k = 0; k < shape.facetCount() && !sends[i]; ++k)
             sends[i] = shape.facets[k].area > 0.0 &&
                        std::abs(luminance(shape.power[k] - shape.gathered[k])) > threshold * shape.facets[k].area;
     });
@@ -186,7 +186,7 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
         ClusterShape::Powers facetDelta{};
         if (el.shape != kNone) {
             ClusterShape& shape = h_.shape(sources[k]);
-            for (int f = 0; f < shape.facetCount; ++f) facetDelta[f] = shape.power[f] - shape.gathered[f];
+            for (int f = 0; f < shape.facetCount(); ++f) facetDelta[f] = shape.power[f] - shape.gathered[f];
             shape.gathered = shape.power;
         }
         for (std::size_t j = 0; j < el.outLinks.size(); ++j) {

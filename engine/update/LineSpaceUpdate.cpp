@@ -303,7 +303,7 @@ double LineSpaceUpdate::unsentPowerOf(ElementId e, bool absolute) const {
     if (el.shape == kNone) return part(luminance(el.radiosity - el.gathered)) * el.area;
     const ClusterShape& shape = h_.shape(e);
     double power = 0.0;
-    for (int k = 0; k < shape.facetCount; ++k) power += part(luminance(shape.power[k] - shape.gathered[k]));
+    for (int k = 0; k < shape.facetCount(); ++k) power += part(luminance(shape.power[k] - shape.gathered[k]));
     return power;
 }
 

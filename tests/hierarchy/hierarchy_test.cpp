@@ -51,9 +51,8 @@ std::size_t checkSubtree(const Hierarchy& h, ElementId id, std::string& problem)
         if (std::abs(area - e.area) > 1e-9 * std::max(1.0, area)) problem = "cluster " + std::to_string(id) + ": area";
         // Its facets, sized to the cluster, hold every member's area once.
         const ClusterShape& shape = h.shape(id);
-        const auto n = static_cast<std::size_t>(shape.facetCount);
-        if (n < 1 || n > ClusterShape::kMaxFacets || shape.facets.size() != n || shape.power.size() != n ||
-            shape.gathered.size() != n)
+        const auto n = static_cast<std::size_t>(shape.facetCount());
+        if (n < 1 || n > ClusterShape::kMaxFacets || shape.power.size() != n || shape.gathered.size() != n)
             problem = "cluster " + std::to_string(id) + ": facets not sized to its " + std::to_string(n);
         double facetArea = 0.0;
         for (const ClusterShape::Facet& f : shape.facets) facetArea += f.area;
