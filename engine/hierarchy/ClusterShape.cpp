@@ -7,6 +7,40 @@
 
 namespace rad {
 
+// The octahedral map: the unit sphere onto the octahedron |x|+|y|+|z| = 1,
+// its lower half folded over the upper, then onto the square [-1,1]^2.
+namespace {
+double signNotZero(double v) { return v < 0.0 ? -1.0 : 1.0; }
+}  // namespace
+
+std::uint32_t ClusterShape::Sample::encode(const glm::dvec3& n) {
+    const double l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    if (!(l1 > 0.0)) return 0;
+    glm::dvec2 o(n.x / l1, n.y / l1);
+    if (n.z < 0.0)
+        o = glm::dvec2((1.0 - std::abs(o.y)) * signNotZero(o.x), (1.0 - std::abs(o.x)) * signNotZero(o.y));
+    const auto fixed = [](double v) {
+        return static_cast<std::uint32_t>(static_cast<std::uint16_t>(
+            static_cast<std::int16_t>(std::lround(std::clamp(v, -1.0, 1.0) * 32767.0))));
+    };
+    return fixed(o.x) | (fixed(o.y) << 16);
+}
+
+glm::dvec3 ClusterShape::Sample::normal() const {
+    const auto real = [](std::uint32_t bits) {
+        return static_cast<std::int16_t>(static_cast<std::uint16_t>(bits)) / 32767.0;
+    };
+    glm::dvec3 n(real(octNormal), real(octNormal >> 16), 0.0);
+    n.z = 1.0 - std::abs(n.x) - std::abs(n.y);
+    if (n.z < 0.0) {
+        const double x = n.x;
+        n.x = (1.0 - std::abs(n.y)) * signNotZero(x);
+        n.y = (1.0 - std::abs(x)) * signNotZero(n.y);
+    }
+    const double len = glm::length(n);
+    return len > 0.0 ? n / len : n;
+}
+
 double ClusterShape::projectedArea(const glm::dvec3& dir) const {
     double a = 0.0;
     for (int k = 0; k < facetCount(); ++k)
@@ -125,28 +159,23 @@ void buildShape(std::span<const ShapePart> children, ClusterShape& shape) {
     // Sample points: kSamples of the children's, stratified by the area each
     // stands for.
     double total = 0.0;
-    for (const ShapePart& part : children)
-        for (const ClusterShape::Sample& s : part.samples) total += s.weight;
+    for (const ShapePart& part : children) total += part.sampleWeight * double(part.samples.size());
     shape.sampleCount = 0;
+    shape.sampleWeight = 0.0f;
     if (!(total > 0.0)) return;
     int k = 0;
     double cumulative = 0.0;
     for (const ShapePart& part : children)
         for (const ClusterShape::Sample& s : part.samples) {
-            cumulative += s.weight;
+            cumulative += part.sampleWeight;
             while (k < ClusterShape::kSamples &&
-                   (k + 0.5) / ClusterShape::kSamples * total <= cumulative) {
-                shape.samples[k] = s;
-                shape.samples[k].weight = static_cast<float>(total / ClusterShape::kSamples);
-                ++k;
-            }
+                   (k + 0.5) / ClusterShape::kSamples * total <= cumulative)
+                shape.samples[k++] = s;
         }
     // Rounding may leave the last targets unmet: they repeat the last point.
-    for (; k < ClusterShape::kSamples && k > 0; ++k) {
-        shape.samples[k] = shape.samples[k - 1];
-        shape.samples[k].weight = static_cast<float>(total / ClusterShape::kSamples);
-    }
+    for (; k < ClusterShape::kSamples && k > 0; ++k) shape.samples[k] = shape.samples[k - 1];
     shape.sampleCount = ClusterShape::kSamples;
+    shape.sampleWeight = static_cast<float>(total / ClusterShape::kSamples);
 }
 
 }  // namespace rad

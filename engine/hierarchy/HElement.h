@@ -39,7 +39,7 @@ struct HElement {
     // Eight bytes of small fields, read on every visit.
     ElementKind kind = ElementKind::Cluster;
     std::uint8_t depth = 0;  // quadtree depth below the input polygon
-    bool lit = false;        // a light link of a punctual light ends here (direct)
+    bool lit = false;        // a light link of a punctual light ends here (Hierarchy::direct)
     bool changed = false;  // on the path to a modified element (sec. 4.1, Fig. 7)
     bool dirty = false;    // own irradiance changed: the whole subtree is pushed again
     // Its links changed: its irradiance is summed again from them before the
@@ -83,9 +83,6 @@ struct HElement {
     // (Solver: what coarse links bring goes to the part of each child's view
     // that finer links leave uncovered).
     double coverage = 0.0;
-    // Surfaces: the irradiance punctual lights send through the light links
-    // that end here (lights/LightLinks.h); `lit` says whether any does.
-    glm::dvec3 direct{0.0};
     glm::dvec3 radiosity{0.0};   // B; for clusters the area-weighted mean below
     // Surfaces: the largest luminance of B among the leaves below (a leaf's
     // own). A link sends the mean B of its source, which stands for its

@@ -155,6 +155,13 @@ Hierarchy::Hierarchy(const Scene& scene, double minArea)
     assignRanges(root_, 0, false);
 }
 
+void Hierarchy::addDirect(ElementId id, const glm::dvec3& irradiance) {
+    if (direct_.size() < elements_.size()) direct_.resize(elements_.capacity());
+    HElement& e = elements_[id];
+    direct_[id] = e.lit ? direct_[id] + irradiance : irradiance;
+    e.lit = true;
+}
+
 ElementId Hierarchy::add(HElement e, const ElementBounds& bounds) {
     if (e.kind == ElementKind::Cluster) {
         if (!freeShapes_.empty()) {
@@ -269,13 +276,12 @@ void Hierarchy::finishCluster(ElementId id) {
             surfaceFacets.push_back({child.normal, child.area});
             auto& samples = surfaceSamples.emplace_back();
             const auto& uv = polygonSampleParams(p.vertexCount);
-            for (int i = 0; i < 16; ++i)
-                samples[i] = {glm::vec3(polygonPoint(p, uv[i])), glm::vec3(child.normal), static_cast<float>(child.area / 16.0),
-                              child.polygon};
-            parts.push_back({std::span(&surfaceFacets.back(), 1), std::span(samples)});
+            const std::uint32_t normal = ClusterShape::Sample::encode(child.normal);
+            for (int i = 0; i < 16; ++i) samples[i] = {glm::vec3(polygonPoint(p, uv[i])), normal, child.polygon};
+            parts.push_back({std::span(&surfaceFacets.back(), 1), std::span(samples), child.area / 16.0});
         } else {
             const ClusterShape& cs = shapes_[child.shape];
-            parts.push_back({std::span(cs.facets), std::span(cs.samples.data(), cs.sampleCount)});
+            parts.push_back({std::span(cs.facets), std::span(cs.samples.data(), cs.sampleCount), cs.sampleWeight});
         }
     }
     ClusterShape& shape = shapes_[c.shape];
@@ -528,6 +534,8 @@ void Hierarchy::compact(double slack) {
     const std::size_t spare = slack > 0.0 ? 4 : 0;
     shrink(elements_, 0);
     shrink(bounds_, 0);
+    if (direct_.size() > elements_.size()) direct_.resize(elements_.size());
+    shrink(direct_, 0);
     shrink(shapes_, 0);
     tbb::parallel_for(std::size_t(0), elements_.size(), [&](std::size_t i) {
         HElement& e = elements_[i];
@@ -540,6 +548,7 @@ void Hierarchy::compact(double slack) {
 
 std::size_t Hierarchy::memoryBytes() const {
     std::size_t bytes = elements_.capacity() * sizeof(HElement) + bounds_.capacity() * sizeof(ElementBounds) +
+                        direct_.capacity() * sizeof(glm::dvec3) +
                         free_.capacity() * sizeof(ElementId) +
                         shapes_.capacity() * sizeof(ClusterShape) + freeShapes_.capacity() * sizeof(std::uint32_t);
     for (const ClusterShape& s : shapes_) bytes += s.heapBytes();

@@ -74,6 +74,14 @@ public:
     std::vector<ElementId> pathTo(std::uint32_t polygon, const glm::dvec2& uv) const;
 
     // A cluster's orientation (see ClusterShape.h).
+    // The irradiance punctual lights send through the light links that end
+    // at a surface (lights/LightLinks.h): zero unless the element is `lit`.
+    // A side table, sized only once a light link exists: most scenes have
+    // no punctual lights, and in those that do most elements are not lit.
+    glm::dvec3 direct(ElementId id) const { return elements_[id].lit ? direct_[id] : glm::dvec3(0.0); }
+    void addDirect(ElementId id, const glm::dvec3& irradiance);
+    void clearDirect(ElementId id) { elements_[id].lit = false; }
+
     ClusterShape& shape(ElementId cluster) { return shapes_[elements_[cluster].shape]; }
     const ClusterShape& shape(ElementId cluster) const { return shapes_[elements_[cluster].shape]; }
     // Sums a cluster's facet powers from its children's radiosity (a pull).
@@ -126,6 +134,7 @@ private:
     const Scene& scene_;  // outlives the hierarchy; polygons move with the dynamic object
     std::vector<HElement> elements_;
     std::vector<ElementBounds> bounds_;  // parallel to elements_
+    std::vector<glm::dvec3> direct_;     // parallel to elements_ once a light link exists
     std::vector<ElementId> free_;
     std::vector<ClusterShape> shapes_;
     std::vector<std::uint32_t> freeShapes_;

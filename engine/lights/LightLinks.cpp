@@ -125,15 +125,12 @@ void LightLinks::sumDirect(std::uint32_t polygon) {
     for (std::vector<ElementId> stack{top}; !stack.empty();) {
         const ElementId e = stack.back();
         stack.pop_back();
-        h_[e].direct = glm::dvec3(0.0);
-        h_[e].lit = false;
+        h_.clearDirect(e);
         for (ElementId c : h_[e].children) stack.push_back(c);
     }
     for (std::size_t l = 0; l < links_.size(); ++l)
-        for (const LightLink& link : linksOf(l, polygon)) {
-            h_[link.receiver].direct += scene_.lights[l].intensity * double(link.irradiance);
-            h_[link.receiver].lit = true;
-        }
+        for (const LightLink& link : linksOf(l, polygon))
+            h_.addDirect(link.receiver, scene_.lights[l].intensity * double(link.irradiance));
 }
 
 void LightLinks::linkAll() {

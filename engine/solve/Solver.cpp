@@ -53,11 +53,12 @@ Solver::Down Solver::shareOf(const Down& down, const HElement& child, double mea
     return Down{w * down.irradiance, w * down.formFactorSum, down.direct};
 }
 
-Solver::Down Solver::surfaceDown(const HElement& e, const Down& down) {
+Solver::Down Solver::surfaceDown(ElementId id, const Down& down) const {
+    const HElement& e = h_[id];
     Down d = down;
     d.irradiance += e.irradiance;
     d.formFactorSum += e.formFactorSum;
-    d.direct += e.direct;
+    d.direct += h_.direct(id);
     return d;
 }
 
@@ -120,7 +121,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
         e.radiosity = b;
         h_.pullPower(id);
     } else {
-        const Down here = surfaceDown(e, down);
+        const Down here = surfaceDown(id, down);
         if (e.isLeaf()) {
             b = e.emission + e.reflectance * (guarded(here.irradiance, here.formFactorSum) + here.direct);
             walk.change += e.area * std::abs(luminance(b - e.radiosity));
@@ -334,7 +335,7 @@ void Solver::forEachLeaf(
                 }
                 return;
             }
-            const Down here = surfaceDown(e, down);
+            const Down here = surfaceDown(id, down);
             if (e.isLeaf()) {
                 f(e, here.irradiance, here.formFactorSum, here.direct);
                 return;

@@ -108,7 +108,7 @@ class Solver {
     // Sweeps in a row whose change grows before the solve calls it diverging.
     static constexpr int kGrowingSweeps = 20;
     // What arrives at a surface element: from above, and on its own links.
-    static Down surfaceDown(const HElement& e, const Down& down);
+    Down surfaceDown(ElementId id, const Down& down) const;
     // The push of a surface element's irradiance to its children. What
     // arrives from above came through links coarser than the children's own;
     // at each child it goes to the part of the view that the child's finer

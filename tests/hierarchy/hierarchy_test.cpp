@@ -1,7 +1,8 @@
 // The H-element hierarchy: attaching an object's cluster to the root (paper
 // sec. 3.3) must leave a well-formed tree, with index ranges that still nest
 // (sec. 3.2) and cluster boxes and areas that still enclose their children,
-// and cluster shapes whose facets are sized to them and hold their area.
+// and cluster shapes whose facets are sized to them and hold their area,
+// with samples on their members' front sides that stand for that area.
 
 #include <gtest/gtest.h>
 
@@ -21,7 +22,7 @@ bool holds(const Aabb& outer, const Aabb& inner) {
 }
 
 // Checks the subtree of `id` and returns the number of elements in it.
-std::size_t checkSubtree(const Hierarchy& h, ElementId id, std::string& problem) {
+std::size_t checkSubtree(const Scene& scene, const Hierarchy& h, ElementId id, std::string& problem) {
     const HElement& e = h[id];
     std::size_t count = 1;
     double area = 0.0;
@@ -44,7 +45,7 @@ std::size_t checkSubtree(const Hierarchy& h, ElementId id, std::string& problem)
                 problem = "cluster " + std::to_string(id) + ": box does not hold child " + std::to_string(c);
             area += child.area;
         }
-        count += checkSubtree(h, c, problem);
+        count += checkSubtree(scene, h, c, problem);
     }
     if (!e.isSurface()) {
         if (e.children.empty()) problem = "cluster " + std::to_string(id) + " is empty";
@@ -57,6 +58,14 @@ std::size_t checkSubtree(const Hierarchy& h, ElementId id, std::string& problem)
         double facetArea = 0.0;
         for (const ClusterShape::Facet& f : shape.facets) facetArea += f.area;
         if (std::abs(facetArea - e.area) > 1e-9 * std::max(1.0, area)) problem = "cluster " + std::to_string(id) + ": facet areas";
+        // Its samples stand for its area, and lie on front sides of its members.
+        if (std::abs(shape.sampleCount * double(shape.sampleWeight) - e.area) > 1e-5 * std::max(1.0, area))
+            problem = "cluster " + std::to_string(id) + ": sample weights";
+        for (int k = 0; k < shape.sampleCount; ++k) {
+            const ClusterShape::Sample& q = shape.samples[k];
+            if (glm::dot(q.normal(), scene.polygons[q.polygon].normal()) < 1.0 - 1e-8)
+                problem = "cluster " + std::to_string(id) + ": sample normal";
+        }
     }
     return count;
 }
@@ -81,7 +90,7 @@ TEST(Hierarchy, AttachToRootKeepsTheTreeWellFormed) {
     EXPECT_TRUE(h.isMovable(cluster));
     EXPECT_EQ(h.movableClusters().size(), movableBefore + 1);
     std::string problem;
-    EXPECT_EQ(checkSubtree(h, h.root(), problem), elements);
+    EXPECT_EQ(checkSubtree(scene, h, h.root(), problem), elements);
     EXPECT_TRUE(problem.empty()) << problem;
     EXPECT_EQ(h.liveCount(), elements);
     EXPECT_EQ(h.range(h.root()).size(), indices);  // the same elements, numbered again
@@ -107,7 +116,7 @@ TEST(Hierarchy, AttachToRootFreesTheClustersItEmpties) {
     EXPECT_EQ(h.liveCount(), elements - 1);
     EXPECT_EQ(h[h.root()].children.size(), 2u);  // the lamp and the room
     std::string problem;
-    EXPECT_EQ(checkSubtree(h, h.root(), problem), elements - 1);
+    EXPECT_EQ(checkSubtree(s, h, h.root(), problem), elements - 1);
     EXPECT_TRUE(problem.empty()) << problem;
     // Attaching again changes nothing.
     h.attachToRoot(room);
