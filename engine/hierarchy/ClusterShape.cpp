@@ -26,21 +26,6 @@ std::uint32_t ClusterShape::Sample::encode(const glm::dvec3& n) {
     return fixed(o.x) | (fixed(o.y) << 16);
 }
 
-glm::dvec3 ClusterShape::Sample::normal() const {
-    const auto real = [](std::uint32_t bits) {
-        return static_cast<std::int16_t>(static_cast<std::uint16_t>(bits)) / 32767.0;
-    };
-    glm::dvec3 n(real(octNormal), real(octNormal >> 16), 0.0);
-    n.z = 1.0 - std::abs(n.x) - std::abs(n.y);
-    if (n.z < 0.0) {
-        const double x = n.x;
-        n.x = (1.0 - std::abs(n.y)) * signNotZero(x);
-        n.y = (1.0 - std::abs(x)) * signNotZero(n.y);
-    }
-    const double len = glm::length(n);
-    return len > 0.0 ? n / len : n;
-}
-
 double ClusterShape::projectedArea(const glm::dvec3& dir) const {
     double a = 0.0;
     for (int k = 0; k < facetCount(); ++k)

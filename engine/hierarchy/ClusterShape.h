@@ -19,6 +19,7 @@
 // (the in-place gather of eq. 1, 2 works on it as on a surface's B).
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -55,7 +56,23 @@ struct ClusterShape {
         std::uint32_t octNormal = 0;
         std::uint32_t polygon = 0;
         static std::uint32_t encode(const glm::dvec3& unitNormal);
-        glm::dvec3 normal() const;
+        // The point of the octahedron the normal maps to: its direction, not
+        // unit length. Inline: a link with a cluster end tests all 16 for
+        // facing (solve/ClusterTransfer.cpp).
+        glm::dvec3 octahedronPoint() const {
+            const auto real = [](std::uint32_t bits) {
+                return static_cast<std::int16_t>(static_cast<std::uint16_t>(bits)) / 32767.0;
+            };
+            glm::dvec3 n(real(octNormal), real(octNormal >> 16), 0.0);
+            n.z = 1.0 - std::abs(n.x) - std::abs(n.y);
+            if (n.z < 0.0) {  // the lower half, folded back
+                const double x = n.x;
+                n.x = (1.0 - std::abs(n.y)) * (x < 0.0 ? -1.0 : 1.0);
+                n.y = (1.0 - std::abs(x)) * (n.y < 0.0 ? -1.0 : 1.0);
+            }
+            return n;
+        }
+        glm::dvec3 normal() const { return glm::normalize(octahedronPoint()); }
     };
     // A value per facet, of fixed size: for temporaries.
     using Powers = std::array<glm::dvec3, kMaxFacets>;

@@ -52,23 +52,22 @@ SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const Aabb& towa
     // its stratified order; each stands for its share of the facing area.
     const ClusterShape& shape = h.shape(source);
     const glm::dvec3 centre = toward.center(), half = 0.5 * toward.extent();
+    const double tolerance = 1e-9 * glm::length(half);
     const auto faces = [&](const glm::dvec3& p, const glm::dvec3& n) {
         // The box's farthest corner along the normal lies in front of the plane.
-        return glm::dot(n, centre - p) + glm::dot(glm::abs(n), half) > 1e-9 * glm::length(half);
+        return glm::dot(n, centre - p) + glm::dot(glm::abs(n), half) > tolerance;
     };
+    // Facing is a sign: the octahedron point serves as well as the unit normal.
     std::array<int, ClusterShape::kSamples> facing{};
-    std::array<glm::dvec3, ClusterShape::kSamples> normals;
     int count = 0;
-    for (int k = 0; k < shape.sampleCount; ++k) {
-        normals[k] = shape.samples[k].normal();
-        if (faces(glm::dvec3(shape.samples[k].p), normals[k])) facing[count++] = k;
-    }
+    for (int k = 0; k < shape.sampleCount; ++k)
+        if (faces(glm::dvec3(shape.samples[k].p), shape.samples[k].octahedronPoint())) facing[count++] = k;
     const double facingArea = count * double(shape.sampleWeight);
     const int n = std::min(count, SourcePoints::kMax);
     for (int i = 0; i < n; ++i) {
         const int k = facing[i * count / n];
         out.p[out.n] = shape.samples[k].p;
-        out.normal[out.n] = normals[k];
+        out.normal[out.n] = shape.samples[k].normal();
         out.polygon[out.n] = shape.samples[k].polygon;
         out.area[out.n++] = facingArea / n;
     }
