@@ -633,7 +633,8 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
     // The links around it: their rays that it blocks move from the static
     // part of the visibility to the dynamic one.
     const Aabb box = s.scene.objectBounds(*object);
-    FrameStats f = s.updater.update(box, box, s.hierarchy.range(cluster), settings, true);
+    const bool relinked = r.removed > 0 || r.created > 0;
+    FrameStats f = s.updater.chooseObject(box, s.hierarchy.range(cluster), relinked, settings);
     f.reinsertion = r;
     f.updateSeconds += reinsertSeconds;
     f.totalSeconds += reinsertSeconds;

@@ -33,13 +33,17 @@ void LineSpaceUpdate::recompute(LinkId id, bool full) {
     // has a cluster end and is refined (measured in office: 3,843 of the
     // 4,365 per frame), and its rays were half the link recomputes.
     const auto lazy = [&] { return l.passive && refiner_.refinesAtAnyVisibility(l); };
-    if (full || layersChanged_ || movedEnd(l.source) || movedEnd(l.receiver)) {
+    if (full || (!layersChanged_ && (movedEnd(l.source) || movedEnd(l.receiver)))) {
         // An end moved: its form factor and both visibility parts change.
         const Link fresh = refiner_.computeUnoccluded(l.source, l.receiver);
         l.unoccluded = fresh.unoccluded;
         l.spread = fresh.spread;
         l.visStale = true;
         if (!lazy()) refiner_.refreshVisibility(l);
+    } else if (layersChanged_) {
+        // Nothing moved; which rays are static and which dynamic changed.
+        l.visStale = true;
+        if (l.unoccluded > 0.0 && !lazy()) refiner_.refreshVisibility(l);
     } else if (l.unoccluded > 0.0) {
         // Two-part visibility: only the dynamic object's part can change.
         if (lazy())

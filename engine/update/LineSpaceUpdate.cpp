@@ -23,8 +23,23 @@ bool LineSpaceUpdate::movedEnd(ElementId e) const {
     return std::any_of(motions_.begin(), motions_.end(), [&](const ObjectMotion& m) { return m.range.nestedWith(r); });
 }
 
-FrameStats LineSpaceUpdate::update(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings,
-                                   bool layersChanged) {
+FrameStats LineSpaceUpdate::update(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings) {
+    layersChanged_ = false;
+    fresh_.reset();
+    return run(motions, settings);
+}
+
+FrameStats LineSpaceUpdate::chooseObject(const Aabb& box, const IndexRange& range, bool relinked,
+                                         const UpdateSettings& settings) {
+    layersChanged_ = true;
+    fresh_ = relinked ? std::optional(range) : std::nullopt;
+    FrameStats stats = run({{box, box, range}}, settings);
+    layersChanged_ = false;
+    fresh_.reset();
+    return stats;
+}
+
+FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     FrameStats stats;
     setDeadline(start, settings);
@@ -34,7 +49,6 @@ FrameStats LineSpaceUpdate::update(const std::vector<ObjectMotion>& motions, con
     for (const ObjectMotion& m : motions) step = std::max(step, motionShare(m.oldBox, m.newBox));
     motionBefore_ = motion_;
     motion_ += step;
-    layersChanged_ = layersChanged;
     candidates_.clear();
     modified_.clear();
     shaftTests_ = 0;

@@ -47,16 +47,21 @@ public:
     // `oldBox` and `newBox`: the dynamic object's boxes before and after.
     // `moved`: the index range of whatever moved (its cluster): links with an
     // end inside it get new form factors and static visibility too.
-    // `layersChanged`: the choice of dynamic object changed, so both parts of
-    // the visibility of every link the traversal finds are recomputed.
     FrameStats update(const Aabb& oldBox, const Aabb& newBox, const IndexRange& moved,
-                      const UpdateSettings& settings, bool layersChanged = false) {
-        return update(std::vector<ObjectMotion>{{oldBox, newBox, moved}}, settings, layersChanged);
+                      const UpdateSettings& settings) {
+        return update(std::vector<ObjectMotion>{{oldBox, newBox, moved}}, settings);
     }
     // Several objects moved in one frame: one traversal finds the links any
     // of them touched.
-    FrameStats update(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings,
-                      bool layersChanged = false);
+    FrameStats update(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings);
+    // An object joined the dynamic layer (Engine::setDynamicObject); nothing
+    // moved. The rays it blocks move from the static part of the visibility
+    // to the dynamic one, so both parts of every link whose shaft meets its
+    // box are cast again; no form factor changes. `relinked`: its links were
+    // just made with the layers as they now are (Reinsertion.h), so the
+    // links with an end in it, and their line-space children, are left as
+    // they are.
+    FrameStats chooseObject(const Aabb& box, const IndexRange& range, bool relinked, const UpdateSettings& settings);
     // For the next update only: static geometry inside the moving object
     // (see Obstacles.h); links with both ends on it whose shafts meet one
     // are updated too.
@@ -217,7 +222,11 @@ private:
     // Whether an element lies in, or holds, a moving object's cluster.
     bool movedEnd(ElementId e) const;
     std::vector<Aabb> obstacles_;
+    FrameStats run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings);
+    // Set by chooseObject for its frame: the layers changed, and the object
+    // whose links are new, if they are.
     bool layersChanged_ = false;
+    std::optional<IndexRange> fresh_;
     std::uint32_t frame_ = 0;
     std::vector<std::uint32_t> polygonStamp_;  // the frame that last counted a polygon's leaves (pushPull)
     // Frame in which a link became a candidate (written by concurrent visits:

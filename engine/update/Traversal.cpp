@@ -18,6 +18,9 @@
 namespace rad {
 
 bool LineSpaceUpdate::affectedByMotion(ElementId s, ElementId r, std::size_t& tests) const {
+    // Links made after the layers changed (chooseObject) are up to date, and
+    // so are their line-space children, which have an end in the same object.
+    if (fresh_ && (fresh_->contains(h_.range(s)) || fresh_->contains(h_.range(r)))) return false;
     const Aabb& a = h_.box(s);
     const Aabb& b = h_.box(r);
     // Whether the shaft of s -> r meets a moving object's old or new box,
