@@ -520,7 +520,9 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
                       cache.vertexAt.size() == polygons + 1 && box.lo == cache.keyOrigin &&
                       keyCellOf(box) == cache.keyCell;
     cache.resizesWaited = resizesWait.load();
-    if (same) {
+    const bool cheaperWhole =
+        cache.assembleSeconds > 0.0 && double(meshed.load()) * cache.patchSecondsPerPart > cache.assembleSeconds;
+    if (same && !cheaperWhole) {
         const auto patchStart = std::chrono::steady_clock::now();
         const double relayoutBefore = cache.relayoutSeconds;
         patch(mesh, cache, remeshed);
@@ -532,6 +534,7 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
         return left.load();
     }
     // Each part's place in the mesh, then the parts copied on all cores.
+    const auto assembleStart = std::chrono::steady_clock::now();
     std::vector<std::size_t> vertexAt(polygons + 1, 0), indexAt(polygons + 1, 0), outlineAt(polygons + 1, 0);
     for (std::size_t p = 0; p < polygons; ++p) {
         const SnapshotCache::Part& part = cache.parts[p];
@@ -570,6 +573,7 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     cache.vertexAt = std::move(vertexAt);
     cache.indexAt = std::move(indexAt);
     numberVertices(cache);
+    cache.assembleSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - assembleStart).count();
     return left.load();
 }
 

@@ -52,6 +52,10 @@ struct SnapshotCache {
     // for good.
     double relayoutSeconds = 0.0;
     bool resizesWaited = false;
+    // What joining every part into a new mesh costs (smoothing included),
+    // measured: when patching the re-meshed parts in would cost more (a frame
+    // that changed much of a small scene), the mesh is joined anew.
+    double assembleSeconds = 0.0;
     struct Key {
         std::int64_t x, y, z, nx, ny, nz;
         auto operator<=>(const Key&) const = default;
