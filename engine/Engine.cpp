@@ -587,11 +587,18 @@ const SolveStats& Engine::solve(const Progress& progress) {
     s.refiner.takeDirty();
     s.refiner.sortLinkLists();  // the first traversal then finds its ranges at once
     s.solved = true;
+    // The lit mesh the viewer draws, made once here: the first frame of a
+    // drag then meshes again only what it changed (the building floor's
+    // whole mesh takes 0.25 s, which its first frame paid). Not a frame:
+    // the mesh's cost model is left to the frames.
+    makeRadiositySnapshot(s.scene, s.hierarchy, s.mesh, s.meshParts, std::nullopt);
+    s.meshValid = true;
+    s.updater.prepare();
     // First guess of a further bounce's cost, until a frame makes one: a
     // sweep of the solve (every link gathered, everything pushed), which a
     // bounce from part of the scene costs at most. A guess of nothing would
     // let the first bounce of a drag run whatever the deadline.
-    if (st.iterations > 0) s.updater.guessBounceSeconds(st.solveSeconds / st.iterations);
+    if (st.iterations > 0) s.updater.guessBounceSeconds(st.solveSeconds / st.iterations, st.links);
     // From here on the oracles follow the light in steps from these anchors.
     anchorOracles(s.hierarchy);
     // First guess of a link update's cost, until the frames give a fit: the
@@ -993,7 +1000,7 @@ MeshSnapshot Engine::snapshot(SnapshotOverlays overlays) const {
                 mesh.lineColors.push_back(color);
             }
     };
-    const auto& links = state_->updater.modifiedLinks();
+    const auto links = state_->updater.modifiedLinks();
     mesh.modifiedLinks = links.size();
     if (overlays.modifiedLinks) {
         const std::size_t most = std::max<std::size_t>(1, overlays.maxLinks);

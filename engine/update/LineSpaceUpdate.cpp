@@ -9,7 +9,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/task_group.h>
 
 #include "hierarchy/ClusterShape.h"
 #include "refine/Refiner.h"
@@ -79,13 +78,9 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const 
     // 3. Partial push-pull, then further bounces where radiosity changed.
     t = std::chrono::steady_clock::now();
     std::vector<ElementId> visited = pushPull(stats);
-    // The overlay on the other core: it reads positions and link ends, the
-    // bounces write radiosity and irradiance.
-    tbb::task_group overlay;
-    overlay.run([this, changed = visited] { recordOverlay(changed, false); });
+    recordOverlay(visited, false);
     touched_.assign(visited.begin(), visited.end());
     bounce(std::move(visited), settings, stats);
-    overlay.wait();
     // 4. Refinement follows the light: links from elements whose oracle
     //    stepped are judged again, with what is left of the budget.
     followTheLight(settings, stats, left());
@@ -97,37 +92,59 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const 
 }
 
 void LineSpaceUpdate::recordOverlay(const std::vector<ElementId>& changed, bool append) {
-    // Bounded: a display of more segments than this says nothing more.
-    constexpr std::size_t kMaxSegments = 200'000;
+    // Ids only: the segments are made when a display asks for them (a
+    // frame that changes half the building floor would otherwise spend 0.1 s
+    // sorting outlines nobody draws). Bounded: a display of more than this
+    // says nothing more.
+    constexpr std::size_t kMaxRecorded = 200'000;
     if (!append) {
-        modifiedSegments_.clear();
-        changedSegments_.clear();
+        overlayLinks_.clear();
+        overlayLeaves_.clear();
     }
-    modified_.insert(modified_.end(), candidates_.begin(), candidates_.end());
-    for (LinkId id : modified_) {
-        if (modifiedSegments_.size() >= kMaxSegments) break;
+    for (const std::vector<LinkId>* ids : {&modified_, &candidates_})
+        for (LinkId id : *ids) {
+            if (overlayLinks_.size() >= kMaxRecorded) break;
+            overlayLinks_.push_back(id);
+        }
+    for (ElementId e : changed) {
+        if (overlayLeaves_.size() >= kMaxRecorded) break;
+        if (h_[e].isSurface() && h_[e].isLeaf()) overlayLeaves_.push_back(e);
+    }
+}
+
+std::vector<std::array<glm::dvec3, 2>> LineSpaceUpdate::modifiedLinks() const {
+    std::vector<std::array<glm::dvec3, 2>> segments;
+    segments.reserve(overlayLinks_.size());
+    for (LinkId id : overlayLinks_) {
+        if (id >= links_.slots() || !links_[id].live) continue;  // removed since
         const Link& l = links_[id];
-        if (!l.live) continue;
-        modifiedSegments_.push_back({h_[l.source].center, h_[l.receiver].center});
+        segments.push_back({h_[l.source].center, h_[l.receiver].center});
     }
+    return segments;
+}
+
+std::vector<std::array<glm::dvec3, 2>> LineSpaceUpdate::changedOutlines() const {
     // The outlines of the changed leaves (a changed parent's area is its
     // changed leaves'), each edge once: neighbours of one polygon share
     // edges, and a software rasteriser pays for every line.
+    std::vector<std::array<glm::dvec3, 2>> edges;
     const auto key = [](const glm::dvec3& p) { return std::tie(p.x, p.y, p.z); };
-    for (ElementId e : changed) {
+    for (ElementId e : overlayLeaves_) {
+        if (e >= h_.size()) continue;
         const HElement& el = h_[e];
-        if (!el.isSurface() || !el.isLeaf() || changedSegments_.size() >= kMaxSegments) continue;
+        if (!el.isSurface() || !el.isLeaf()) continue;  // subdivided since
         for (int k = 0; k < el.patch.n; ++k) {
             std::array<glm::dvec3, 2> edge{el.patch.v[k], el.patch.v[(k + 1) % el.patch.n]};
             if (key(edge[1]) < key(edge[0])) std::swap(edge[0], edge[1]);
-            changedSegments_.push_back(edge);
+            edges.push_back(edge);
         }
     }
-    std::sort(changedSegments_.begin(), changedSegments_.end(), [&](const auto& a, const auto& b) {
+    std::sort(edges.begin(), edges.end(), [&](const auto& a, const auto& b) {
         return std::tie(a[0].x, a[0].y, a[0].z, a[1].x, a[1].y, a[1].z) <
                std::tie(b[0].x, b[0].y, b[0].z, b[1].x, b[1].y, b[1].z);
     });
-    changedSegments_.erase(std::unique(changedSegments_.begin(), changedSegments_.end()), changedSegments_.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    return edges;
 }
 
 std::size_t LineSpaceUpdate::reinstateUnneeded() {

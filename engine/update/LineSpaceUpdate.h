@@ -95,10 +95,18 @@ public:
         double seconds(std::size_t changedLeaves) const { return base + perLeaf * double(changedLeaves); }
     };
     void setFrameTail(const FrameTail& tail) { tail_ = tail; }
-    // What a further bounce, and the push of the receivers waiting for one,
-    // are expected to cost before one was measured.
-    void guessBounceSeconds(double seconds) {
-        if (bounceSeconds_ == 0.0) bounceSeconds_ = seconds;
+    // After a solve: the per-link marks sized to the links, so that the first
+    // frame of a drag does not pay for touching them (in the building floor,
+    // 7M links, it paid 35 ms).
+    void prepare() {
+        linkStamp_.assign(links_.slots(), 0);
+        staleMark_.assign(links_.slots(), 0);
+    }
+    // What a further bounce (per link leaving its senders), and the push of
+    // the receivers waiting for one, are expected to cost before one was
+    // measured: a sweep of the solve, `seconds` over `links` active links.
+    void guessBounceSeconds(double seconds, std::size_t links) {
+        if (bounceSecondsPerLink_ == 0.0) bounceSecondsPerLink_ = seconds / double(std::max<std::size_t>(1, links));
         if (waitingPushSeconds_ == 0.0) waitingPushSeconds_ = seconds;
     }
 
@@ -116,9 +124,9 @@ public:
     // What the last frame touched, for display (paper Fig. 5 b, c): the links
     // it modified (the centres of their two H-elements) and the surface
     // leaves the push-pull changed (their outlines, each edge once), as
-    // segments.
-    const std::vector<std::array<glm::dvec3, 2>>& modifiedLinks() const { return modifiedSegments_; }
-    const std::vector<std::array<glm::dvec3, 2>>& changedOutlines() const { return changedSegments_; }
+    // segments, made when asked.
+    std::vector<std::array<glm::dvec3, 2>> modifiedLinks() const;
+    std::vector<std::array<glm::dvec3, 2>> changedOutlines() const;
 
 private:
     // The affected p-links of a visit with nested source ranges, descended together.
@@ -251,8 +259,9 @@ private:
     double shareThatFits(std::size_t changedLeaves, double seconds) const;
     // Below this share a bounce or push is not begun.
     static constexpr double kLeastShare = 0.1;
-    // What the last bounce took, the meshing of what it changed included.
-    double bounceSeconds_ = 0.0;
+    // What the last bounce took per link leaving its senders, the push and
+    // meshing of what it changed included.
+    double bounceSecondsPerLink_ = 0.0;
     // An idle frame (refinePending) begins its first batch of refinement
     // and its first bounce whatever the clock says, so that idle time
     // converges even on a deadline shorter than they take.
@@ -277,7 +286,8 @@ private:
     std::vector<Visit> visits_;
     std::vector<LinkId> doomed_;  // removeLineSpaceChildren's, kept to spare an allocation per node
     std::vector<LinkId> modified_;  // this frame's modified links, for the overlay
-    std::vector<std::array<glm::dvec3, 2>> modifiedSegments_, changedSegments_;
+    std::vector<LinkId> overlayLinks_;       // what modifiedLinks() draws
+    std::vector<ElementId> overlayLeaves_;   // what changedOutlines() draws
     // The overlay segments of this frame's modified links and changed
     // elements; `append`: added to those on show (catching up after a move).
     void recordOverlay(const std::vector<ElementId>& changed, bool append);

@@ -4,10 +4,11 @@
 // transfer, from which links are refined while the budget lasts (eq. 2 for
 // the parent, new transfers for its children).
 
+#include <algorithm>
+#include <unordered_set>
+
 #include "refine/Refiner.h"
 #include "update/LineSpaceUpdate.h"
-
-#include <unordered_set>
 
 namespace rad {
 
@@ -17,12 +18,21 @@ void LineSpaceUpdate::updateCandidates(FrameStats& stats, std::size_t budget) {
     // recomputed them all.
     // A link reached from two visits (or again while catching up) is one
     // candidate: updated twice, its refinement would be made twice.
-    std::vector<char> seen(links_.slots(), 0);
-    std::erase_if(candidates_, [&](LinkId id) {
-        if (!links_[id].live || links_[id].passive || seen[id]) return true;
-        seen[id] = 1;
-        return false;
-    });
+    // Found by sorting (the first of each kept, in the traversal's order),
+    // not by a mark per link slot: a frame's candidates are few beside the
+    // links of a large scene.
+    std::vector<std::pair<LinkId, std::size_t>> order(candidates_.size());
+    for (std::size_t i = 0; i < candidates_.size(); ++i) order[i] = {candidates_[i], i};
+    std::sort(order.begin(), order.end());
+    std::vector<char> keep(candidates_.size(), 0);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        const LinkId id = order[i].first;
+        keep[order[i].second] = (i == 0 || order[i - 1].first != id) && links_[id].live && !links_[id].passive;
+    }
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < candidates_.size(); ++i)
+        if (keep[i]) candidates_[n++] = candidates_[i];
+    candidates_.resize(n);
     for (LinkId id : candidates_) {
         ++stats.candidates;
         if (refiner_.wouldRefine(links_[id])) {
