@@ -598,7 +598,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     // sweep of the solve (every link gathered, everything pushed), which a
     // bounce from part of the scene costs at most. A guess of nothing would
     // let the first bounce of a drag run whatever the deadline.
-    if (st.iterations > 0) s.updater.guessBounceSeconds(st.solveSeconds / st.iterations, st.links);
+    if (st.iterations > 0) s.updater.guessBounceSeconds(st.solveSeconds / st.iterations, st.links, st.elements);
     // From here on the oracles follow the light in steps from these anchors.
     anchorOracles(s.hierarchy);
     // First guess of a link update's cost, until the frames give a fit: the

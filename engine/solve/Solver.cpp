@@ -66,6 +66,17 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
                         int depth, Walk& walk) {
     HElement& e = h_[id];
     if (!forced && !e.changed) return e.radiosity;
+    if (!forced && e.dirty && walk.deadline &&
+        std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                               std::chrono::duration<double>(e.area * walk.deadline->secondsPerArea)) >
+            walk.deadline->stop) {
+        // Marked again by the next partial push-pull; meanwhile it is an
+        // element like any other (a link update may mark it dirty, and so
+        // have its irradiance summed again before that push).
+        walk.unpushed->push_back(id);
+        e.changed = e.dirty = false;
+        return e.radiosity;
+    }
     if (walk.visited) walk.visited->push_back(id);
     const bool below = forced || e.dirty;
     glm::dvec3 b(0.0);
@@ -96,9 +107,11 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
             // taken in order, as the serial descent would.
             std::vector<glm::dvec3> childB(children.size());
             std::vector<Walk> walks(children.size());
-            std::vector<std::vector<ElementId>> visited(children.size());
+            std::vector<std::vector<ElementId>> visited(children.size()), unpushed(children.size());
             tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) {
                 walks[i].visited = walk.visited ? &visited[i] : nullptr;
+                walks[i].deadline = walk.deadline;
+                walks[i].unpushed = walk.unpushed ? &unpushed[i] : nullptr;
                 childB[i] =
                     push(children[i], surfaceDown[i], clusterDown[i], below, depth + 1, walks[i]);
             });
@@ -109,6 +122,8 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
                 walk.total += walks[i].total;
                 if (walk.visited)
                     walk.visited->insert(walk.visited->end(), visited[i].begin(), visited[i].end());
+                if (walk.unpushed)
+                    walk.unpushed->insert(walk.unpushed->end(), unpushed[i].begin(), unpushed[i].end());
             }
         } else {
             for (std::size_t i = 0; i < children.size(); ++i) {
@@ -160,12 +175,24 @@ double Solver::pushPull() {
     return walk.total > 0.0 ? walk.change / walk.total : 0.0;
 }
 
-std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dirty) {
-    for (ElementId e : dirty)
-        for (ElementId a = e; a != kNone && !h_[a].changed; a = h_[a].parent) h_[a].changed = true;
+std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dirty,
+                                               std::optional<PushDeadline> deadline) {
+    // What waited is pushed now, unless it waits again (freed since it
+    // began waiting, a removed subdivision: nothing to push).
+    std::vector<ElementId> waited;
+    waited.swap(unpushed_);
+    for (ElementId e : waited)
+        if (e == h_.root() || h_[e].parent != kNone) h_[e].dirty = true;
+    for (const std::vector<ElementId>* list : {&dirty, static_cast<const std::vector<ElementId>*>(&waited)})
+        for (ElementId e : *list) {
+            if (!h_[e].dirty) continue;
+            for (ElementId a = e; a != kNone && !h_[a].changed; a = h_[a].parent) h_[a].changed = true;
+        }
     std::vector<ElementId> visited;
     Walk walk;
     walk.visited = &visited;
+    walk.deadline = deadline ? &*deadline : nullptr;
+    walk.unpushed = &unpushed_;
     push(h_.root(), Down{}, FacetArrivals{}, false, 0, walk);
     return visited;
 }

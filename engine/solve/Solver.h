@@ -9,8 +9,10 @@
 // no leaf reflects more light than a closed enclosure would send it, so the
 // iteration cannot diverge for reflectance below one.
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "hierarchy/Hierarchy.h"
@@ -57,7 +59,21 @@ class Solver {
     // Partial push-pull (Fig. 7): only the paths to the dirty elements and the
     // subtrees below them are visited; elsewhere the stored B stands. Clears
     // the marks. Returns the elements visited.
-    std::vector<ElementId> partialPushPull(const std::vector<ElementId>& dirty);
+    //
+    // On a deadline (`stop`), a dirty element whose subtree's push is
+    // expected to end after it waits, unpushed: its subtree keeps its B, and
+    // the next partial push-pull pushes it (or lets it wait again). The expected cost is the element's share of the scene's
+    // surface area times `secondsPerArea`: a dirty cluster near the root
+    // (a chair's light reaching most of a building floor through one coarse
+    // link) is a push of most of the scene.
+    struct PushDeadline {
+        std::chrono::steady_clock::time_point stop;
+        double secondsPerArea = 0.0;
+    };
+    std::vector<ElementId> partialPushPull(const std::vector<ElementId>& dirty,
+                                           std::optional<PushDeadline> deadline = std::nullopt);
+    // The dirty elements the last deadline left unpushed.
+    const std::vector<ElementId>& unpushed() const { return unpushed_; }
     // Iterates gather and push-pull until converged or maxIterations. Every
     // sweep checks that the radiosity is finite and not running away: no
     // radiosity can exceed the largest emission over (1 - the largest
@@ -95,6 +111,8 @@ class Solver {
     struct Walk {
         std::vector<ElementId>* visited = nullptr;
         double change = 0.0, total = 0.0;
+        const PushDeadline* deadline = nullptr;
+        std::vector<ElementId>* unpushed = nullptr;  // with a deadline
     };
     // One element of a push-pull: its new B. `forced`: the whole subtree is
     // pushed (full push-pull, or below a dirty element); otherwise only the
@@ -145,6 +163,7 @@ class Solver {
     Hierarchy& h_;
     LinkStore& links_;
     bool guard_ = true;
+    std::vector<ElementId> unpushed_;
     glm::dvec3 directBound_{0.0};
 };
 

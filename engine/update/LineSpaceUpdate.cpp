@@ -196,7 +196,7 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     stats.elements = h_.liveCount();
     stats.pending = pending_.size();
     stats.stale = stale_.size();
-    stats.unsent = unsent_.size() + waiting_.size();
+    stats.unsent = unsent_.size() + waiting_.size() + solver_.unpushed().size();
     stats.estimatedError = estimatedError();
     stats.totalSeconds = secondsSince(start);
 }
@@ -298,7 +298,21 @@ void LineSpaceUpdate::startLinkUpdates() {
 }
 
 std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats) {
-    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty());
+    // On a deadline (not in idle time, which pushes everything so that it
+    // converges), a push expected to pass it waits: its cost by the area
+    // below the dirty element, at what the last large pushes took per
+    // element, the frame's tail left its time.
+    std::optional<Solver::PushDeadline> deadline;
+    if (deadline_ && !idle_) {
+        const double elementsPerArea = double(h_.liveCount()) / std::max(1e-300, h_[h_.root()].area);
+        deadline = Solver::PushDeadline{*deadline_ - seconds(tail_.seconds(stats.changedLeaves)),
+                                        pushSecondsPerElement_ * elementsPerArea};
+    }
+    const auto began = std::chrono::steady_clock::now();
+    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty(), deadline);
+    // Small pushes say more about the call than about elements.
+    if (visited.size() >= kPushSample)
+        pushSecondsPerElement_ = std::max(secondsSince(began) / double(visited.size()), 0.75 * pushSecondsPerElement_);
     stats.changedElements += visited.size();
     // The snapshot meshes again every polygon with a changed leaf, all of
     // its leaves: that, counted once a frame, is what its time follows.

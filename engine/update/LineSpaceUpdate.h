@@ -105,9 +105,12 @@ public:
     // What a further bounce (per link leaving its senders), and the push of
     // the receivers waiting for one, are expected to cost before one was
     // measured: a sweep of the solve, `seconds` over `links` active links.
-    void guessBounceSeconds(double seconds, std::size_t links) {
+    // The same sweep over `elements` elements is the first guess of a push's
+    // cost per element.
+    void guessBounceSeconds(double seconds, std::size_t links, std::size_t elements) {
         if (bounceSecondsPerLink_ == 0.0) bounceSecondsPerLink_ = seconds / double(std::max<std::size_t>(1, links));
         if (waitingPushSeconds_ == 0.0) waitingPushSeconds_ = seconds;
+        if (pushSecondsPerElement_ == 0.0) pushSecondsPerElement_ = seconds / double(std::max<std::size_t>(1, elements));
     }
 
     // The live error estimate (FrameStats::estimatedError), in the units of
@@ -262,6 +265,10 @@ private:
     // What the last bounce took per link leaving its senders, the push and
     // meshing of what it changed included.
     double bounceSecondsPerLink_ = 0.0;
+    // What a partial push-pull took per element it visited, measured on
+    // pushes of at least kPushSample elements.
+    double pushSecondsPerElement_ = 0.0;
+    static constexpr std::size_t kPushSample = 1000;
     // An idle frame (refinePending) begins its first batch of refinement
     // and its first bounce whatever the clock says, so that idle time
     // converges even on a deadline shorter than they take.
