@@ -1,0 +1,78 @@
+// The partial push-pull (paper Fig. 7) on a deadline (solve/Solver.h): a
+// dirty element whose push would end after the deadline waits, unpushed,
+// with its subtree's radiosity as it was; the next partial push-pull pushes
+// it, and the result is the one a push without a deadline gives, to the bit.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <vector>
+
+#include "hierarchy/Hierarchy.h"
+#include "solve/Solver.h"
+#include "support/TestScenes.h"
+
+namespace rad {
+namespace {
+
+using V = glm::dvec3;
+
+struct Room {
+    Scene scene;
+    Hierarchy h;
+    LinkStore links;
+    Solver solver;
+    ElementId wall;  // a subdivided wall, two levels deep
+    explicit Room(const Scene& s) : scene(s), h(scene, 1e-6), solver(h, links) {
+        wall = h.polygonElement(0);
+        h.subdivide(wall);
+        h.subdivide(h[wall].children[1]);
+        solver.pushPull();  // every B from emission and irradiance (none yet)
+    }
+    // Light arrives on the wall: its subtree must be pushed again.
+    void lightTheWall() {
+        h[wall].irradiance = V(2.0, 1.0, 0.5);
+        h[wall].dirty = true;
+    }
+    std::vector<V> radiosity() const {
+        std::vector<V> b;
+        for (ElementId e = 0; e < h.size(); ++e) b.push_back(h[e].radiosity);
+        return b;
+    }
+};
+
+Scene room() {
+    Scene s;
+    s.sourcePath = "push-deadline";
+    const auto white = test::addMaterial(s, V(0.5), V(0.0), "white");
+    test::addQuadObject(s, "room", white, test::boxFaces(V(0.0), V(4.0, 3.0, 5.0), true));
+    return s;
+}
+
+TEST(PartialPushPull, APushThatWouldPassTheDeadlineWaitsAndIsMadeLater) {
+    const Scene s = room();
+    Room onTime(s), late(s);
+    onTime.lightTheWall();
+    const std::vector<ElementId> visited = onTime.solver.partialPushPull({onTime.wall});
+    EXPECT_TRUE(onTime.solver.unpushed().empty());
+    const std::vector<V> expected = onTime.radiosity();
+    ASSERT_NE(expected, late.radiosity()) << "the light changed something";
+
+    late.lightTheWall();
+    const std::vector<V> before = late.radiosity();
+    // A deadline already passed: the wall's subtree is not pushed.
+    const Solver::PushDeadline passed{std::chrono::steady_clock::now() - std::chrono::seconds(1), 1e-9};
+    const std::vector<ElementId> none = late.solver.partialPushPull({late.wall}, passed);
+    for (ElementId e : none) EXPECT_NE(e, late.wall);
+    ASSERT_EQ(late.solver.unpushed(), std::vector<ElementId>{late.wall});
+    EXPECT_EQ(late.radiosity(), before);
+    // A deadline far away: what waited is pushed now, with nothing new dirty.
+    const Solver::PushDeadline later{std::chrono::steady_clock::now() + std::chrono::hours(1), 1e-9};
+    const std::vector<ElementId> pushed = late.solver.partialPushPull({}, later);
+    EXPECT_EQ(pushed.size(), visited.size());
+    EXPECT_TRUE(late.solver.unpushed().empty());
+    EXPECT_EQ(late.radiosity(), expected);
+}
+
+}  // namespace
+}  // namespace rad
