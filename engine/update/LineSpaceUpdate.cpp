@@ -77,7 +77,7 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const 
 
     // 3. Partial push-pull, then further bounces where radiosity changed.
     t = std::chrono::steady_clock::now();
-    std::vector<ElementId> visited = pushPull(stats);
+    std::vector<ElementId> visited = pushPull(stats, true);
     recordOverlay(visited, false);
     touched_.assign(visited.begin(), visited.end());
     bounce(std::move(visited), settings, stats);
@@ -297,13 +297,12 @@ void LineSpaceUpdate::startLinkUpdates() {
     linkDeadline_ = now + seconds(std::max(0.0, left) / 2.0);
 }
 
-std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats) {
-    // On a deadline (not in idle time, which pushes everything so that it
-    // converges), a push expected to pass it waits: its cost by the area
+std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats, bool onTheClock) {
+    // On a deadline, a push expected to pass it waits: its cost by the area
     // below the dirty element, at what the last large pushes took per
     // element, the frame's tail left its time.
     std::optional<Solver::PushDeadline> deadline;
-    if (deadline_ && !idle_) {
+    if (onTheClock && deadline_ && !idle_) {
         const double elementsPerArea = double(h_.liveCount()) / std::max(1e-300, h_[h_.root()].area);
         deadline = Solver::PushDeadline{*deadline_ - seconds(tail_.seconds(stats.changedLeaves)),
                                         pushSecondsPerElement_ * elementsPerArea};

@@ -198,7 +198,10 @@ private:
     static constexpr double kOracleFloor = 1e-3;
     // The partial push-pull of what is marked dirty (Fig. 7); counts the
     // elements it visits in `stats`. Returns them.
-    std::vector<ElementId> pushPull(FrameStats& stats);
+    // `onTheClock`: the push of what a move's link updates changed, which a
+    // deadline may leave waiting (Solver::PushDeadline). Not an edit's first
+    // push: refinement then judges by the edited light, which must be there.
+    std::vector<ElementId> pushPull(FrameStats& stats, bool onTheClock = false);
     std::vector<ElementId> touched_;  // elements the frame's push-pulls visited
     // Per element: how much the bounces could have moved its radiosity since
     // its last push; negative when it waits for none.
@@ -276,6 +279,7 @@ private:
     // Elements whose change of radiosity a deadline kept from being sent
     // (bounced): the next bounce, in a later frame or idle time, sends it.
     std::vector<ElementId> unsent_;
+    std::size_t unsentLinks_ = 0;  // leaving them, counted as they joined
     // The power one of them has yet to send: the sum of its changes
     // (a cluster's, facet by facet) in size, or with their signs.
     double unsentPowerOf(ElementId e, bool absolute = true) const;
