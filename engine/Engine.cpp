@@ -191,14 +191,43 @@ struct Engine::State {
         glm::dmat4 world{1.0};
     };
     std::map<std::uint32_t, Deferred> deferred;
-    // What the last first traversals took (the fastest of the last four,
-    // from the second on: the first of a drag runs on cold caches): a frame
-    // on a deadline that cannot leave the traversal that time defers its
-    // move.
-    std::deque<double> traversals;
-    std::optional<double> traversalSeconds() const {
-        if (traversals.size() < 2) return std::nullopt;
-        return *std::min_element(traversals.begin(), traversals.end());
+    // What the last first traversals took for the same objects moving (the
+    // fastest of the last four, from the second on: the first of a drag runs
+    // on cold caches): a frame on a deadline that cannot leave the traversal
+    // that time defers its move. Kept per set of moving objects: a
+    // bookcase's traversal takes ten times a chair's.
+    std::map<std::vector<std::uint32_t>, std::deque<double>> traversals;
+    // The least a traversal has taken per link with an end in the moving
+    // objects (it visits all of those): before a set of objects has a
+    // history, its traversal is guessed from its links at that rate.
+    double traversalPerLink = 0.0;
+    std::optional<double> traversalSeconds(const std::vector<std::uint32_t>& objects) const {
+        const auto found = traversals.find(objects);
+        const std::size_t known = found == traversals.end() ? 0 : found->second.size();
+        if (known >= 2) return *std::min_element(found->second.begin(), found->second.end());
+        if (known == 0 && traversalPerLink > 0.0) return traversalPerLink * double(linksOf(objects));
+        return std::nullopt;  // its first, cold traversal: measured again
+    }
+    void recordTraversal(const std::vector<std::uint32_t>& objects, double seconds) {
+        std::deque<double>& last = traversals[objects];
+        last.push_back(seconds);
+        if (last.size() > 4) last.pop_front();
+        if (last.size() > 2) return;  // the rate from a set's first frames (counting its links is a walk)
+        const double perLink = seconds / double(std::max<std::size_t>(1, linksOf(objects)));
+        traversalPerLink = traversalPerLink > 0.0 ? std::min(traversalPerLink, perLink) : perLink;
+    }
+    // Links and p-links with an end in the objects (each counted at its
+    // receiver and at its source).
+    std::size_t linksOf(const std::vector<std::uint32_t>& objects) const {
+        std::size_t n = 0;
+        for (std::uint32_t object : objects)
+            for (std::vector<ElementId> stack{hierarchy.objectCluster(object)}; !stack.empty();) {
+                const HElement& e = hierarchy[stack.back()];
+                stack.pop_back();
+                n += e.links.size() + e.plinks.size() + e.outLinks.size() + e.outPlinks.size();
+                stack.insert(stack.end(), e.children.begin(), e.children.end());
+            }
+        return n;
     }
 };
 
@@ -758,8 +787,15 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // updated, until a frame with the time (or an idle one) updates the
     // links for one move from there. A budget-starved drag so keeps the
     // object's links as they were, and its frames short.
-    if (allowDeferral && settings.deadlineSeconds && s.traversalSeconds() &&
-        *settings.deadlineSeconds - moveSeconds - choosingSeconds - s.meshCost.model().first < *s.traversalSeconds()) {
+    std::vector<std::uint32_t> moving;
+    for (const auto& [object, d] : from) moving.push_back(object);  // sorted: a map's keys
+    // A guess from the links is at the least rate measured, and a large
+    // object's traversal costs more per link (in `two-offices` a bookcase's
+    // 135 ms against 39 guessed from the chair's): one that does not fit
+    // surely does not.
+    const auto traversal = allowDeferral && settings.deadlineSeconds ? s.traversalSeconds(moving) : std::nullopt;
+    if (traversal &&
+        *settings.deadlineSeconds - moveSeconds - choosingSeconds - s.meshCost.model().first < *traversal) {
         s.deferred = std::move(from);
         FrameStats stats;
         stats.moveSeconds = moveSeconds;
@@ -789,8 +825,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     s.deferred.clear();
     s.updater.setObstacles(std::move(obstacles));
     FrameStats stats = s.updater.update(motions, s.forUpdater(settings, moveSeconds + choosingSeconds));
-    s.traversals.push_back(stats.traversalSeconds);
-    if (s.traversals.size() > 4) s.traversals.pop_front();
+    s.recordTraversal(moving, stats.traversalSeconds);
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();

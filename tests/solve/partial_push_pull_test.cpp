@@ -61,13 +61,15 @@ TEST(PartialPushPull, APushThatWouldPassTheDeadlineWaitsAndIsMadeLater) {
     late.lightTheWall();
     const std::vector<V> before = late.radiosity();
     // A deadline already passed: the wall's subtree is not pushed.
-    const Solver::PushDeadline passed{std::chrono::steady_clock::now() - std::chrono::seconds(1), 1e-9};
+    const Solver::PushDeadline passed{std::chrono::steady_clock::now() - std::chrono::seconds(1),
+                                      1e-9};
     const std::vector<ElementId> none = late.solver.partialPushPull({late.wall}, passed);
     for (ElementId e : none) EXPECT_NE(e, late.wall);
     ASSERT_EQ(late.solver.unpushed(), std::vector<ElementId>{late.wall});
     EXPECT_EQ(late.radiosity(), before);
     // A deadline far away: what waited is pushed now, with nothing new dirty.
-    const Solver::PushDeadline later{std::chrono::steady_clock::now() + std::chrono::hours(1), 1e-9};
+    const Solver::PushDeadline later{std::chrono::steady_clock::now() + std::chrono::hours(1),
+                                     1e-9};
     const std::vector<ElementId> pushed = late.solver.partialPushPull({}, later);
     EXPECT_EQ(pushed.size(), visited.size());
     EXPECT_TRUE(late.solver.unpushed().empty());
