@@ -79,7 +79,7 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const 
     t = std::chrono::steady_clock::now();
     std::vector<ElementId> visited = pushPull(stats, true);
     recordOverlay(visited, false);
-    touched_.assign(visited.begin(), visited.end());
+    touched_.insert(touched_.end(), visited.begin(), visited.end());  // with what a deadline left
     bounce(std::move(visited), settings, stats);
     // 4. Refinement follows the light: links from elements whose oracle
     //    stepped are judged again, with what is left of the budget.
@@ -378,7 +378,7 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     std::vector<ElementId> visited = pushPull(stats);
     // What catching up changed joins what the last move changed on show.
     recordOverlay(visited, true);
-    touched_.assign(visited.begin(), visited.end());
+    touched_.insert(touched_.end(), visited.begin(), visited.end());
     bounce(std::move(visited), settings, stats);
     followTheLight(settings, stats, left());
     idle_ = false;

@@ -272,6 +272,9 @@ private:
     // pushes of at least kPushSample elements.
     double pushSecondsPerElement_ = 0.0;
     static constexpr std::size_t kPushSample = 1000;
+    // What following the light took per element touched (stepping the
+    // oracles, judging the links of those that stepped), measured likewise.
+    double followSecondsPerElement_ = 0.0;
     // An idle frame (refinePending) begins its first batch of refinement
     // and its first bounce whatever the clock says, so that idle time
     // converges even on a deadline shorter than they take.
