@@ -283,6 +283,8 @@ private:
     // (bounced): the next bounce, in a later frame or idle time, sends it.
     std::vector<ElementId> unsent_;
     std::size_t unsentLinks_ = 0;  // leaving them, counted as they joined
+    // What choosing a bounce's senders took per element considered.
+    double chooseSecondsPerSender_ = 0.0;
     // The power one of them has yet to send: the sum of its changes
     // (a cluster's, facet by facet) in size, or with their signs.
     double unsentPowerOf(ElementId e, bool absolute = true) const;
