@@ -1035,9 +1035,9 @@ MeshSnapshot Engine::snapshot(SnapshotOverlays overlays) const {
                 mesh.lineColors.push_back(color);
             }
     };
-    const auto links = state_->updater.modifiedLinks();
-    mesh.modifiedLinks = links.size();
+    mesh.modifiedLinks = state_->updater.modifiedLinkCount();
     if (overlays.modifiedLinks) {
+        const auto links = state_->updater.modifiedLinks();
         const std::size_t most = std::max<std::size_t>(1, overlays.maxLinks);
         const std::size_t stride = std::max<std::size_t>(1, (links.size() + most - 1) / most);
         add(links, glm::vec3(1.0f, 0.85f, 0.1f), stride);

@@ -181,12 +181,14 @@ std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dir
     // began waiting, a removed subdivision: nothing to push).
     std::vector<ElementId> waited;
     waited.swap(unpushed_);
+    const auto markPath = [&](ElementId e) {
+        for (ElementId a = e; a != kNone && !h_[a].changed; a = h_[a].parent) h_[a].changed = true;
+    };
+    for (ElementId e : dirty) markPath(e);
     for (ElementId e : waited)
-        if (e == h_.root() || h_[e].parent != kNone) h_[e].dirty = true;
-    for (const std::vector<ElementId>* list : {&dirty, static_cast<const std::vector<ElementId>*>(&waited)})
-        for (ElementId e : *list) {
-            if (!h_[e].dirty) continue;
-            for (ElementId a = e; a != kNone && !h_[a].changed; a = h_[a].parent) h_[a].changed = true;
+        if (e == h_.root() || h_[e].parent != kNone) {
+            h_[e].dirty = true;
+            markPath(e);
         }
     std::vector<ElementId> visited;
     Walk walk;

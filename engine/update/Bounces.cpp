@@ -23,27 +23,28 @@ namespace rad {
 
 namespace {
 
-// Keeps in `v` its elements of highest priority whose costs add up to
-// `share` of the total (at least one), and moves the others to `rest`.
-template <class Cost, class Priority>
-void keepShare(std::vector<ElementId>& v, double share, std::vector<ElementId>& rest, const Cost& cost,
-               const Priority& priority) {
-    std::vector<std::pair<double, ElementId>> order;
+// Keeps in `v` its items of highest priority whose costs add up to `share`
+// of the total (at least one), in that order, and hands the others to `rest`.
+template <class T, class Cost, class Priority, class Rest>
+void keepShare(std::vector<T>& v, double share, const Cost& cost, const Priority& priority, const Rest& rest) {
+    std::vector<std::pair<double, std::size_t>> order;  // (priority, index in v)
+    order.reserve(v.size());
     double total = 0.0;
-    for (ElementId e : v) {
-        order.emplace_back(priority(e), e);
-        total += cost(e);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        order.emplace_back(priority(v[i]), i);
+        total += cost(v[i]);
     }
     std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    v.clear();
+    std::vector<T> kept;
     double used = 0.0;
-    for (const auto& [p, e] : order) {
-        used += cost(e);
-        if (v.empty() || used <= share * total)
-            v.push_back(e);
+    for (const auto& [p, i] : order) {
+        used += cost(v[i]);
+        if (kept.empty() || used <= share * total)
+            kept.push_back(v[i]);
         else
-            rest.push_back(e);
+            rest(v[i]);
     }
+    v.swap(kept);
 }
 
 }  // namespace
@@ -110,22 +111,13 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             break;
         }
         if (share < 1.0) {
-            std::vector<std::pair<double, std::size_t>> order;  // (power to send, index in senders)
-            order.reserve(senders.size());
-            for (std::size_t i = 0; i < senders.size(); ++i) order.emplace_back(unsentPowerOf(senders[i].first), i);
-            std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-            std::vector<std::pair<ElementId, std::size_t>> kept;
-            const double total = double(links);
+            using Sender = std::pair<ElementId, std::size_t>;
+            keepShare(
+                senders, share, [](const Sender& s) { return double(s.second); },
+                [&](const Sender& s) { return unsentPowerOf(s.first); },
+                [&](const Sender& s) { defer(s.first, s.second); });
             links = 0;
-            for (const auto& [power, i] : order) {
-                if (kept.empty() || double(links + senders[i].second) <= share * total) {
-                    kept.push_back(senders[i]);
-                    links += senders[i].second;
-                } else {
-                    defer(senders[i].first, senders[i].second);
-                }
-            }
-            senders.swap(kept);
+            for (const auto& [e, n] : senders) links += n;
         }
         visited.clear();
         for (const auto& [e, n] : senders) visited.push_back(e);
@@ -186,8 +178,8 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
     pushed.swap(waiting_);
     if (share < 1.0)
         keepShare(
-            pushed, share, waiting_, [](ElementId) { return 1.0; },
-            [&](ElementId e) { return waitingChange_[e] * h_[e].area; });
+            pushed, share, [](ElementId) { return 1.0; }, [&](ElementId e) { return waitingChange_[e] * h_[e].area; },
+            [&](ElementId e) { waiting_.push_back(e); });
     const auto began = std::chrono::steady_clock::now();
     const std::size_t leavesBefore = stats.changedLeaves;
     for (ElementId e : pushed) {

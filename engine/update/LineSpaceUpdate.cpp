@@ -116,11 +116,16 @@ std::vector<std::array<glm::dvec3, 2>> LineSpaceUpdate::modifiedLinks() const {
     std::vector<std::array<glm::dvec3, 2>> segments;
     segments.reserve(overlayLinks_.size());
     for (LinkId id : overlayLinks_) {
-        if (id >= links_.slots() || !links_[id].live) continue;  // removed since
+        if (!overlayLinkLive(id)) continue;  // removed since
         const Link& l = links_[id];
         segments.push_back({h_[l.source].center, h_[l.receiver].center});
     }
     return segments;
+}
+
+std::size_t LineSpaceUpdate::modifiedLinkCount() const {
+    return static_cast<std::size_t>(
+        std::count_if(overlayLinks_.begin(), overlayLinks_.end(), [&](LinkId id) { return overlayLinkLive(id); }));
 }
 
 std::vector<std::array<glm::dvec3, 2>> LineSpaceUpdate::changedOutlines() const {

@@ -129,6 +129,7 @@ public:
     // leaves the push-pull changed (their outlines, each edge once), as
     // segments, made when asked.
     std::vector<std::array<glm::dvec3, 2>> modifiedLinks() const;
+    std::size_t modifiedLinkCount() const;  // the segments modifiedLinks() would make
     std::vector<std::array<glm::dvec3, 2>> changedOutlines() const;
 
 private:
@@ -303,6 +304,7 @@ private:
     std::vector<LinkId> doomed_;  // removeLineSpaceChildren's, kept to spare an allocation per node
     std::vector<LinkId> modified_;  // this frame's modified links, for the overlay
     std::vector<LinkId> overlayLinks_;       // what modifiedLinks() draws
+    bool overlayLinkLive(LinkId id) const { return id < links_.slots() && links_[id].live; }
     std::vector<ElementId> overlayLeaves_;   // what changedOutlines() draws
     // The overlay segments of this frame's modified links and changed
     // elements; `append`: added to those on show (catching up after a move).
