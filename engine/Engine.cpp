@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 #include <sstream>
 
@@ -80,14 +81,15 @@ struct Engine::State {
         dynamic = object;
         if (chosen.count(*object)) return;
         const Object& o = scene.objects[*object];
+        std::vector<std::uint32_t> own(o.polygonCount);
+        std::iota(own.begin(), own.end(), o.firstPolygon);
         chosen[*object] = Chosen{{scene.polygons.begin() + o.firstPolygon, scene.polygons.begin() + o.firstPolygon + o.polygonCount},
-                                 o.worldFromLocal};
+                                 o.worldFromLocal, rays.addInstance(scene, own)};
+        rays.commitInstances();
         std::vector<std::uint32_t> staticPolygons;
-        dynamicPolygonIds.clear();
         for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
-            (chosen.count(scene.polygons[p].object) ? dynamicPolygonIds : staticPolygons).push_back(p);
+            if (!chosen.count(scene.polygons[p].object)) staticPolygons.push_back(p);
         rays.setLayer(Layer::Static, scene, staticPolygons);
-        rays.setLayer(Layer::Dynamic, scene, dynamicPolygonIds);
     }
     std::vector<std::uint32_t> allPolygons() const {
         std::vector<std::uint32_t> all(scene.polygons.size());
@@ -174,12 +176,14 @@ struct Engine::State {
     std::optional<std::uint32_t> dynamic;  // the last chosen
     // The dynamic layer: every object chosen so far, with its polygons and
     // transform as chosen (moves are applied to those, not accumulated).
+    // An object of the dynamic layer: its polygons and transform when it was
+    // chosen, and its instance in the layer (moved from there).
     struct Chosen {
         std::vector<Polygon> polygons;
         glm::dmat4 world{1.0};
+        std::size_t instance = 0;
     };
     std::map<std::uint32_t, Chosen> chosen;
-    std::vector<std::uint32_t> dynamicPolygonIds;
 
     // A move deferred for lack of time (Engine::moveObjects): per object,
     // its box and transform where its links were last updated. The frame
@@ -749,12 +753,13 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
             for (int k = 0; k < p.vertexCount; ++k) p.vertices[k] = glm::dvec3(delta * glm::dvec4(c.polygons[i].vertices[k], 1.0));
         }
         o.worldFromLocal = worldFromLocal;
+        s.rays.moveInstance(c.instance, delta);
         const ElementId cluster = s.hierarchy.objectCluster(object);
         s.hierarchy.updateGeometry(cluster);
         s.hierarchy.refreshAncestors(cluster);
         boxes.insert(boxes.end(), {before, s.scene.objectBounds(object)});
     }
-    s.rays.setLayer(Layer::Dynamic, s.scene, s.dynamicPolygonIds);
+    s.rays.commitInstances();
     // The light links: the lights that moved are linked again everywhere;
     // for the others, the polygons the objects moved on, and those whose
     // shafts toward a light the objects cross before or after the move.

@@ -6,11 +6,32 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace rad {
+
+// The triangles of one Embree geometry: the static layer's, or one instance
+// of the dynamic layer. (Outside the anonymous namespace: they are members
+// of a class with linkage, and a unity build includes this file into
+// another.)
+struct RayCasterSceneRelease {
+    void operator()(RTCScene s) const { rtcReleaseScene(s); }
+};
+using RayCasterScenePtr = std::unique_ptr<RTCSceneTy, RayCasterSceneRelease>;
+
+struct RayCasterPart {
+    std::vector<std::uint32_t> polygonOfTri;  // Embree primID -> scene polygon id
+    std::vector<glm::dvec4> planes;           // primID -> plane in double, where it is now
+    double magnitude = 0.0;                   // largest absolute vertex coordinate, where it is now
+    // An instance: its own scene, and its planes and vertices in the pose
+    // it was added in (the transform of a move starts from them).
+    RayCasterScenePtr scene;
+    std::vector<glm::dvec4> addedPlanes;
+    std::vector<glm::dvec3> addedVertices;
+};
 
 namespace {
 
@@ -61,10 +82,15 @@ struct PlacedSegment {
 // data to a filter function; the base must come first); a ray's id indexes its segment.
 struct SegmentContext {
     RTCIntersectContext base;
-    const std::vector<glm::dvec4>* planes;         // per triangle: unnormalised normal n, and n . v0
-    const std::vector<std::uint32_t>* polygonOf;  // per triangle: the scene polygon
+    const std::vector<RayCasterPart>* parts;
     const PlacedSegment* segments;
 };
+
+// The part a hit is on: an instance's (the dynamic layer), or the layer's
+// only one (the static layer, whose triangles are not instanced).
+const RayCasterPart& partOf(const std::vector<RayCasterPart>& parts, unsigned instance) {
+    return parts[instance == RTC_INVALID_GEOMETRY_ID ? 0 : instance];
+}
 
 // Whether polygon `other`, coincident with the end polygon `end` near the end
 // point p and met by the segment from the side its front faces (`facing`),
@@ -81,7 +107,7 @@ bool coincidentInFront(const glm::dvec4& plane, const glm::dvec3& p, double tole
 // polygon are passed over.
 struct PickContext {
     RTCIntersectContext base;
-    const std::vector<glm::dvec4>* planes;
+    const std::vector<RayCasterPart>* parts;
     glm::dvec3 direction;
     bool frontOnly;
 };
@@ -91,7 +117,8 @@ void filterBacks(const RTCFilterFunctionNArguments* args) {
     if (!ctx->frontOnly) return;
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
-        const glm::dvec4& plane = (*ctx->planes)[RTCHitN_primID(args->hit, args->N, i)];
+        const RayCasterPart& part = partOf(*ctx->parts, RTCHitN_instID(args->hit, args->N, i, 0));
+        const glm::dvec4& plane = part.planes[RTCHitN_primID(args->hit, args->N, i)];
         if (glm::dot(glm::dvec3(plane), ctx->direction) >= 0.0) args->valid[i] = 0;
     }
 }
@@ -102,10 +129,11 @@ void filterHits(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] != -1) continue;
         const PlacedSegment& s = ctx->segments[RTCRayN_id(args->ray, args->N, i)];
         const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
-        const std::uint32_t polygon = (*ctx->polygonOf)[prim];
+        const RayCasterPart& part = partOf(*ctx->parts, RTCHitN_instID(args->hit, args->N, i, 0));
+        const std::uint32_t polygon = part.polygonOfTri[prim];
         bool blocks = false;
         if (polygon != s.fromPolygon && polygon != s.toPolygon) {
-            const glm::dvec4& plane = (*ctx->planes)[prim];
+            const glm::dvec4& plane = part.planes[prim];
             const glm::dvec3 n(plane);
             const double nd = glm::dot(n, s.d);
             // A segment in the triangle's plane (nd 0) is not blocked by it:
@@ -126,18 +154,11 @@ void filterHits(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 struct RayCaster::Impl {
-    // Outside the anonymous namespace: LayerData is a member of a class with
-    // linkage, and a unity build includes this file into another.
-    struct SceneRelease {
-        void operator()(RTCScene s) const { rtcReleaseScene(s); }
-    };
-    using ScenePtr = std::unique_ptr<RTCSceneTy, SceneRelease>;
-
     struct LayerData {
-        ScenePtr scene;                           // null when the layer is empty
-        std::vector<std::uint32_t> polygonOfTri;  // Embree primID -> scene polygon id
-        std::vector<glm::dvec4> planes;           // Embree primID -> plane in double
-        double magnitude = 0.0;                   // largest absolute vertex coordinate
+        RayCasterScenePtr scene;         // null when the layer is empty
+        std::vector<RayCasterPart> parts;  // static: one; dynamic: one per instance, by its geometry id
+        double magnitude = 0.0;          // largest absolute vertex coordinate
+        bool instanced = false;          // the dynamic layer: its parts are instances
     };
 
     RTCDevice device = nullptr;
@@ -160,7 +181,7 @@ struct RayCaster::Impl {
         }
     }
     ~Impl() {
-        for (LayerData& l : layers) l.scene.reset();  // scenes before their device
+        for (LayerData& l : layers) l = LayerData{};  // scenes before their device
         rtcReleaseDevice(device);
     }
     Impl(const Impl&) = delete;
@@ -168,6 +189,67 @@ struct RayCaster::Impl {
 
     const LayerData& layer(Layer l) const { return layers[l == Layer::Static ? 0 : 1]; }
     LayerData& layer(Layer l) { return layers[l == Layer::Static ? 0 : 1]; }
+
+    RayCasterScenePtr newScene(const char* what) {
+        RayCasterScenePtr scene(rtcNewScene(device));
+        throwOnError(device, what);
+        // Robust traversal: no missed hits on shared edges, which would let light leak through
+        // the seams of a triangulated blocker.
+        rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST);
+        return scene;
+    }
+
+    // The polygons' triangles (a fan of each convex polygon) as one Embree
+    // geometry in `part`, attached to `scene` (not committed); false when
+    // there are none.
+    bool addTriangles(const Scene& scene, std::span<const std::uint32_t> polygonIds, RTCScene into,
+                      RayCasterPart& part) {
+        std::vector<glm::vec3> vertices;
+        std::vector<std::uint32_t> indices;
+        for (std::uint32_t id : polygonIds) {
+            if (id >= scene.polygons.size())
+                throw std::out_of_range("RayCaster: polygon id " + std::to_string(id) + " >= " +
+                                        std::to_string(scene.polygons.size()));
+            const Polygon& p = scene.polygons[id];
+            if (p.vertexCount < 3 || p.vertexCount > 4) continue;
+            const auto base = static_cast<std::uint32_t>(vertices.size());
+            for (int k = 0; k < p.vertexCount; ++k) {
+                vertices.push_back(toEmbree(p.vertices[k]));
+                part.magnitude = std::max(part.magnitude, maxAbs(p.vertices[k]));
+            }
+            for (int k = 1; k + 1 < p.vertexCount; ++k) {
+                indices.insert(indices.end(), {base, base + k, base + k + 1});
+                part.polygonOfTri.push_back(id);
+                const glm::dvec3 n = glm::cross(p.vertices[k] - p.vertices[0], p.vertices[k + 1] - p.vertices[0]);
+                part.planes.emplace_back(n, glm::dot(n, p.vertices[0]));
+            }
+        }
+        if (part.polygonOfTri.empty()) return false;
+        RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        throwOnError(device, "creating the triangle geometry");
+        auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), vertices.size()));
+        auto* ib = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), part.polygonOfTri.size()));
+        if (!vb || !ib) {
+            rtcReleaseGeometry(geometry);
+            throwOnError(device, "allocating geometry buffers");
+            throw std::runtime_error("Embree: could not allocate geometry buffers");
+        }
+        for (std::size_t i = 0; i < vertices.size(); ++i) {
+            vb[3 * i + 0] = vertices[i].x;
+            vb[3 * i + 1] = vertices[i].y;
+            vb[3 * i + 2] = vertices[i].z;
+        }
+        std::copy(indices.begin(), indices.end(), ib);
+        rtcSetGeometryOccludedFilterFunction(geometry, filterHits);
+        rtcSetGeometryIntersectFilterFunction(geometry, filterBacks);
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometry(into, geometry);
+        rtcReleaseGeometry(geometry);  // the scene holds it now
+        throwOnError(device, "attaching the triangle geometry");
+        return true;
+    }
 
     double tolerance(const LayerData& l, const glm::dvec3& a, const glm::dvec3& b) const {
         const double magnitude = std::max({l.magnitude, maxAbs(a), maxAbs(b)});
@@ -206,8 +288,7 @@ struct RayCaster::Impl {
         ray.flags[lane] = 0;
     }
 
-    // The segments (at most 16) traced as one packet: the segments of a link
-    // run between two small patches, so they travel the same BVH nodes.
+    // The segments (at most 16) traced as one packet.
     std::uint16_t blockedMask(const LayerData& l, std::span<const Segment> in) const {
         std::array<PlacedSegment, kMaxSegments> segments;
         alignas(64) std::array<int, 16> valid{};
@@ -222,9 +303,11 @@ struct RayCaster::Impl {
         if (!any) return 0;
         SegmentContext context;
         rtcInitIntersectContext(&context.base);
-        context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        context.planes = &l.planes;
-        context.polygonOf = &l.polygonOfTri;
+        // Coherent: the segments of a link run between two small patches, so
+        // they travel the same BVH nodes. Not through instances: Embree 3.13's
+        // coherent packets hang there (seen in the tests, after a first device).
+        context.base.flags = l.instanced ? RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT : RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        context.parts = &l.parts;
         context.segments = segments.data();
         rtcOccluded16(valid.data(), l.scene.get(), &context.base, &rays);
         std::uint16_t mask = 0;
@@ -249,70 +332,103 @@ void RayCaster::setFrame(const Aabb& bounds) {
     impl_->size = size > 0.0 ? size : 1.0;
 }
 
-void RayCaster::setLayer(Layer layer, const Scene& scene,
-                         std::span<const std::uint32_t> polygonIds) {
-    Impl::LayerData fresh;
-    std::vector<glm::vec3> vertices;
-    std::vector<std::uint32_t> indices;
-    for (std::uint32_t id : polygonIds) {
-        if (id >= scene.polygons.size())
-            throw std::out_of_range("RayCaster::setLayer: polygon id " + std::to_string(id) +
-                                    " >= " + std::to_string(scene.polygons.size()));
-        const Polygon& p = scene.polygons[id];
-        if (p.vertexCount < 3 || p.vertexCount > 4) continue;
-        const auto base = static_cast<std::uint32_t>(vertices.size());
-        for (int k = 0; k < p.vertexCount; ++k) {
-            vertices.push_back(impl_->toEmbree(p.vertices[k]));
-            fresh.magnitude = std::max(fresh.magnitude, maxAbs(p.vertices[k]));
-        }
-        // Fan triangulation of a convex polygon.
-        for (int k = 1; k + 1 < p.vertexCount; ++k) {
-            indices.insert(indices.end(), {base, base + k, base + k + 1});
-            fresh.polygonOfTri.push_back(id);
-            const glm::dvec3 n =
-                glm::cross(p.vertices[k] - p.vertices[0], p.vertices[k + 1] - p.vertices[0]);
-            fresh.planes.emplace_back(n, glm::dot(n, p.vertices[0]));
-        }
+void RayCaster::setLayer(Layer layer, const Scene& scene, std::span<const std::uint32_t> polygonIds) {
+    if (layer == Layer::Dynamic) {
+        clearInstances();
+        addInstance(scene, polygonIds);
+        commitInstances();
+        return;
     }
-
-    if (!fresh.polygonOfTri.empty()) {
-        RTCDevice device = impl_->device;
-        fresh.scene.reset(rtcNewScene(device));
-        throwOnError(device, "creating a scene");
-        // Robust traversal: no missed hits on shared edges, which would let light leak through
-        // the seams of a triangulated blocker.
-        rtcSetSceneFlags(fresh.scene.get(), RTC_SCENE_FLAG_ROBUST);
-        rtcSetSceneBuildQuality(fresh.scene.get(), layer == Layer::Static
-                                                       ? RTC_BUILD_QUALITY_HIGH
-                                                       : RTC_BUILD_QUALITY_MEDIUM);
-        RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        throwOnError(device, "creating the triangle geometry");
-        auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                               vertices.size()));
-        auto* ib = static_cast<std::uint32_t*>(
-            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                    3 * sizeof(std::uint32_t), fresh.polygonOfTri.size()));
-        if (!vb || !ib) {
-            rtcReleaseGeometry(geometry);
-            throwOnError(device, "allocating geometry buffers");
-            throw std::runtime_error("Embree: could not allocate geometry buffers");
-        }
-        for (std::size_t i = 0; i < vertices.size(); ++i) {
-            vb[3 * i + 0] = vertices[i].x;
-            vb[3 * i + 1] = vertices[i].y;
-            vb[3 * i + 2] = vertices[i].z;
-        }
-        std::copy(indices.begin(), indices.end(), ib);
-        rtcSetGeometryOccludedFilterFunction(geometry, filterHits);
-        rtcSetGeometryIntersectFilterFunction(geometry, filterBacks);
-        rtcCommitGeometry(geometry);
-        rtcAttachGeometry(fresh.scene.get(), geometry);
-        rtcReleaseGeometry(geometry);  // the scene holds it now
-        rtcCommitScene(fresh.scene.get());
-        throwOnError(device, "building the scene");
+    Impl::LayerData fresh;
+    fresh.parts.resize(1);
+    RayCasterScenePtr built = impl_->newScene("creating a scene");
+    rtcSetSceneBuildQuality(built.get(), RTC_BUILD_QUALITY_HIGH);
+    if (impl_->addTriangles(scene, polygonIds, built.get(), fresh.parts[0])) {
+        rtcCommitScene(built.get());
+        throwOnError(impl_->device, "building the scene");
+        fresh.scene = std::move(built);
+        fresh.magnitude = fresh.parts[0].magnitude;
     }
     impl_->layer(layer) = std::move(fresh);
+}
+
+void RayCaster::clearInstances() { impl_->layer(Layer::Dynamic) = Impl::LayerData{}; }
+
+std::size_t RayCaster::addInstance(const Scene& scene, std::span<const std::uint32_t> polygonIds) {
+    Impl::LayerData& l = impl_->layer(Layer::Dynamic);
+    RayCasterPart part;
+    RayCasterScenePtr triangles = impl_->newScene("creating an instance's scene");
+    // Built once, moved by its transform: worth a good tree.
+    rtcSetSceneBuildQuality(triangles.get(), RTC_BUILD_QUALITY_HIGH);
+    const std::size_t index = l.parts.size();
+    if (impl_->addTriangles(scene, polygonIds, triangles.get(), part)) {
+        rtcCommitScene(triangles.get());
+        throwOnError(impl_->device, "building an instance's scene");
+        if (!l.scene) {
+            l.scene = impl_->newScene("creating the dynamic layer's scene");
+            // Its few instances move every frame: rebuilt fast.
+            rtcSetSceneBuildQuality(l.scene.get(), RTC_BUILD_QUALITY_LOW);
+            rtcSetSceneFlags(l.scene.get(), RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
+            l.instanced = true;
+        }
+        RTCGeometry instance = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
+        throwOnError(impl_->device, "creating an instance");
+        rtcSetGeometryInstancedScene(instance, triangles.get());
+        rtcSetGeometryTimeStepCount(instance, 1);
+        rtcAttachGeometryByID(l.scene.get(), instance, static_cast<unsigned>(index));
+        rtcReleaseGeometry(instance);  // the layer's scene holds it now
+        throwOnError(impl_->device, "attaching an instance");
+        for (std::uint32_t id : polygonIds) {
+            const Polygon& p = scene.polygons[id];
+            if (p.vertexCount >= 3 && p.vertexCount <= 4)
+                part.addedVertices.insert(part.addedVertices.end(), p.vertices.begin(), p.vertices.begin() + p.vertexCount);
+        }
+        part.addedPlanes = part.planes;
+        part.scene = std::move(triangles);
+    }
+    l.parts.push_back(std::move(part));
+    moveInstance(index, glm::dmat4(1.0));
+    return index;
+}
+
+void RayCaster::moveInstance(std::size_t index, const glm::dmat4& fromAdded) {
+    Impl::LayerData& l = impl_->layer(Layer::Dynamic);
+    if (index >= l.parts.size())
+        throw std::out_of_range("RayCaster::moveInstance: instance " + std::to_string(index) + " >= " +
+                                std::to_string(l.parts.size()));
+    RayCasterPart& part = l.parts[index];
+    if (!part.scene) return;
+    // The planes in world space, in double (the filter places hits on them):
+    // a rigid motion turns a normal by its rotation, and moves the offset by
+    // the translation along the turned normal.
+    const glm::dmat3 r(fromAdded);
+    const glm::dvec3 t(fromAdded[3]);
+    for (std::size_t i = 0; i < part.planes.size(); ++i) {
+        const glm::dvec3 n = r * glm::dvec3(part.addedPlanes[i]);
+        part.planes[i] = glm::dvec4(n, part.addedPlanes[i].w + glm::dot(n, t));
+    }
+    part.magnitude = 0.0;
+    for (const glm::dvec3& v : part.addedVertices) part.magnitude = std::max(part.magnitude, maxAbs(glm::dvec3(fromAdded * glm::dvec4(v, 1.0))));
+    // Embree's frame is the world moved to `origin` and scaled: there the
+    // motion p -> R p + t becomes q -> R q + scale (R origin + t - origin).
+    const glm::dvec3 shift = impl_->scale * (r * impl_->origin + t - impl_->origin);
+    float xfm[12];
+    for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 3; ++k) xfm[3 * c + k] = static_cast<float>(r[c][k]);
+    for (int k = 0; k < 3; ++k) xfm[9 + k] = static_cast<float>(shift[k]);
+    RTCGeometry instance = rtcGetGeometry(l.scene.get(), static_cast<unsigned>(index));
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+    rtcCommitGeometry(instance);
+    throwOnError(impl_->device, "moving an instance");
+}
+
+void RayCaster::commitInstances() {
+    Impl::LayerData& l = impl_->layer(Layer::Dynamic);
+    l.magnitude = 0.0;
+    for (const RayCasterPart& part : l.parts) l.magnitude = std::max(l.magnitude, part.magnitude);
+    if (!l.scene) return;
+    rtcCommitScene(l.scene.get());
+    throwOnError(impl_->device, "building the dynamic layer");
 }
 
 std::uint16_t RayCaster::blocked(Layer layer, std::span<const Segment> segments) const {
@@ -333,7 +449,7 @@ std::optional<RayCaster::Hit> RayCaster::intersect(const glm::dvec3& origin,
                              bool frontOnly) -> std::optional<Hit> {
         PickContext context;
         rtcInitIntersectContext(&context.base);
-        context.planes = &l.planes;
+        context.parts = &l.parts;
         context.direction = direction;
         context.frontOnly = frontOnly;
         RTCRayHit rh{};
@@ -354,8 +470,9 @@ std::optional<RayCaster::Hit> RayCaster::intersect(const glm::dvec3& origin,
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(l.scene.get(), &context.base, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-        const bool front = glm::dot(glm::dvec3(l.planes[rh.hit.primID]), direction) < 0.0;
-        return Hit{l.polygonOfTri.at(rh.hit.primID), double(rh.ray.tfar), front};
+        const RayCasterPart& part = partOf(l.parts, rh.hit.instID[0]);
+        const bool front = glm::dot(glm::dvec3(part.planes[rh.hit.primID]), direction) < 0.0;
+        return Hit{part.polygonOfTri.at(rh.hit.primID), double(rh.ray.tfar), front};
     };
     std::optional<Hit> best;
     for (const Impl::LayerData& l : impl_->layers) {

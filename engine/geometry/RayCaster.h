@@ -1,7 +1,9 @@
 #pragma once
 // Visibility by ray casting with Embree 3, split in two layers (paper sec. 3.4): occlusion by
-// the static scene is computed once per link, occlusion by the dynamic object again each frame.
+// the static scene is computed once per link, occlusion by the dynamic objects again each frame.
+// The dynamic objects are instances, moved by their transforms.
 
+#include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
@@ -25,8 +27,20 @@ class RayCaster {
 
     // Replace the geometry of a layer: the given polygons of `scene` (ids index scene.polygons,
     // std::out_of_range otherwise), triangulated. Static is built once per choice of dynamic
-    // object; Dynamic again after each move. Not to be called while queries run.
+    // objects. For Dynamic, the polygons become the layer's only instance, where they are now.
+    // Not to be called, nor any of the instance calls below, while queries run.
     void setLayer(Layer layer, const Scene& scene, std::span<const std::uint32_t> polygonIds);
+
+    // The dynamic layer holds one Embree instance per dynamic object: its
+    // triangles are built once, in the pose the polygons have when added,
+    // and a move only sets the instance's transform (no rebuild). Returns
+    // the instance's index. Queries see adds and moves after commitInstances().
+    std::size_t addInstance(const Scene& scene, std::span<const std::uint32_t> polygonIds);
+    // Places an instance by a rigid motion (rotation and translation) from
+    // the pose it was added in.
+    void moveInstance(std::size_t instance, const glm::dmat4& fromAdded);
+    void commitInstances();
+    void clearInstances();
     // The region the layers live in (the scene's bounds): set before the
     // layers, it makes the float ray casting independent of the scene's scale.
     void setFrame(const Aabb& bounds);
