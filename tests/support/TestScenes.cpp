@@ -119,7 +119,7 @@ Quad rectangle(int axis, double c, double a0, double a1, double b0, double b1, b
 
 glm::dvec3 doorHinge() { return glm::dvec3(1.45, 0.0, 1.96); }
 
-Scene doorwayScene(bool doorDynamic) {
+Scene doorwayScene(bool doorDynamic, DoorPlacement placement) {
     using V = glm::dvec3;
     Scene s;
     s.sourcePath = "doorway";
@@ -149,8 +149,13 @@ Scene doorwayScene(bool doorDynamic) {
                    rectangle(2, 2.1, 0, 1.5, 0, 2.5, true), rectangle(2, 2.1, 2.5, 4, 0, 2.5, true),
                    rectangle(2, 2.1, 1.5, 2.5, 2, 2.5, true)});
     addQuadObject(s, "dark-block", wall, boxFaces(V(2.8, 0.0, 3.5), V(3.4, 0.8, 4.1), false));
-    // The door: x 1.45..2.55, up to 2.05, z 1.96..1.998, faces out, no bottom.
-    auto door = boxFaces(V(1.45, 0.0, 1.96), V(2.55, 2.05, 1.998), false);
+    // The door, faces out, no bottom: in front of the wall x 1.45..2.55, up
+    // to 2.05, z 1.96..1.998 (or 2.0, touching); in the reveal x 1.5..2.5,
+    // up to 2.0, z 2.03..2.07.
+    auto door = placement == DoorPlacement::InTheReveal
+                    ? boxFaces(V(1.5, 0.0, 2.03), V(2.5, 2.0, 2.07), false)
+                    : boxFaces(V(1.45, 0.0, placement == DoorPlacement::GapInFront ? 1.96 : 1.962),
+                               V(2.55, 2.05, placement == DoorPlacement::GapInFront ? 1.998 : 2.0), false);
     door.erase(door.begin());  // the -y face rests on the floor
     addQuadObject(s, "door", paint, door, doorDynamic);
     return s;

@@ -35,12 +35,18 @@ Scene roomWithBlock(double scale = 1.0, glm::dvec3 blockOffset = glm::dvec3(0.0)
 
 // A corridor (4 x 2.5 x 2 m, a ceiling light) and a dark room behind a 0.1 m
 // wall, joined by a 1 x 2 m doorway. The door ("door", marked dynamic when
-// `doorDynamic`) stands on the corridor side 2 mm off the wall, overlapping
-// the opening by 5 cm on the sides and the top: closed, no straight line
-// reaches the dark room. Every object of the dark room is named "dark-...".
-// doorHinge() is the door's hinge line (axis +y): a positive turn about it
-// opens the door into the corridor.
-Scene doorwayScene(bool doorDynamic = true);
+// `doorDynamic`) closes it, where `placement` says:
+// - GapInFront: on the corridor side 2 mm off the wall, overlapping the
+//   opening by 5 cm on the sides and the top;
+// - AgainstTheWall: the same, touching the wall;
+// - InTheReveal: 4 cm thick, filling the opening halfway through the wall,
+//   its edges on the reveal's faces.
+// Closed, no straight line reaches the dark room. Every object of the dark
+// room is named "dark-...". doorHinge() is the hinge line of the door in
+// front of the wall (axis +y): a positive turn about it opens the door into
+// the corridor.
+enum class DoorPlacement { GapInFront, AgainstTheWall, InTheReveal };
+Scene doorwayScene(bool doorDynamic = true, DoorPlacement placement = DoorPlacement::GapInFront);
 glm::dvec3 doorHinge();
 
 std::string sourcePath(const std::string& relative);
