@@ -87,6 +87,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             unsentLinks_ = 0;
         }
     }
+    BounceSeries series;
     for (int b = 0; b < settings.maxBounces && !sendNone; ++b) {
         // On a deadline: a bounce, expected to cost per link leaving its
         // senders what the last one did (its push and meshing included), is
@@ -126,7 +127,10 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
                 std::max(secondsSince(choosingStart) / double(candidates), 0.75 * chooseSecondsPerSender_);
         const auto began = std::chrono::steady_clock::now();
         const std::size_t leavesBefore = stats.changedLeaves;
-        if (!collectTransfers(visited, threshold, transfers)) break;
+        // A bounce that leaves senders unsent is no term of the series.
+        if (share < 1.0) series = BounceSeries{};
+        if (!collectTransfers(visited, threshold, transfers, share < 1.0 || !settings.extrapolateBounces ? nullptr : &series))
+            break;
         // In the serial order, so that every irradiance gets the same sum.
         // Bound by memory: the receivers a few transfers ahead are asked for early.
         constexpr std::size_t kAhead = 8;
@@ -194,7 +198,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
 }
 
 bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, double threshold,
-                                       std::vector<Transfer>& transfers) {
+                                       std::vector<Transfer>& transfers, BounceSeries* series) {
     // The senders and their transfers are found on all cores: reading the
     // elements and links is most of a bounce.
     std::vector<char> sends(visited.size());
@@ -215,28 +219,63 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
     std::vector<ElementId> sources;
     std::vector<std::size_t> first;  // per source: where its transfers start
     std::size_t count = 0;
+    glm::dvec3 sent(0.0);  // the change sent, per channel: radiosity times area, or facet power
     for (std::size_t i = 0; i < visited.size(); ++i) {
         if (!sends[i]) continue;
         sources.push_back(visited[i]);
         first.push_back(count);
-        count += h_[visited[i]].outLinks.size();
+        const HElement& el = h_[visited[i]];
+        count += el.outLinks.size();
+        if (!series) continue;
+        if (el.isSurface()) {
+            sent += glm::abs(el.radiosity - el.gathered) * el.area;
+        } else {
+            const ClusterShape& shape = h_.shape(visited[i]);
+            for (int k = 0; k < shape.facetCount(); ++k) sent += glm::abs(shape.power[k] - shape.gathered[k]);
+        }
+    }
+    glm::dvec3 ahead(1.0);  // what each sender that sent in the last bounce sends, times its change
+    if (series && !series->done) {
+        const glm::dvec3 ratio = glm::all(glm::greaterThan(series->last, glm::dvec3(0.0))) ? sent / series->last : glm::dvec3(-1.0);
+        bool steady = true;
+        for (int c = 0; c < 3; ++c)
+            steady = steady && ratio[c] >= kSmallestBounceRatio && ratio[c] <= kLargestBounceRatio && series->ratio[c] > 0.0 &&
+                     std::abs(ratio[c] - series->ratio[c]) <= kSteadyBounceRatio * (1.0 - ratio[c]);
+        if (steady) {
+            ahead = 1.0 / (1.0 - ratio);
+            series->done = true;  // what follows is the guess's correction, in plain bounces
+        } else {
+            series->ratio = ratio;
+            series->last = sent;
+        }
     }
     transfers.resize(count);
+    // Stamps of the bounce each element last sent in (0: none yet).
+    if (sentLast_.size() < h_.size()) sentLast_.resize(h_.size(), 0);
+    ++bounceStamp_;
     tbb::parallel_for(std::size_t(0), sources.size(), [&](std::size_t k) {
         HElement& el = h_[sources[k]];
         // In-place gather of the difference on every link leaving the source.
-        const glm::dvec3 delta = el.radiosity - el.gathered;
+        // Only a change of one bounce is a term of the series: what an
+        // element kept unsent over several (each under the threshold) goes
+        // out once (sent ahead, such sums made a moved block's bounces in
+        // the Cornell box grow).
+        const glm::dvec3 factor = sentLast_[sources[k]] == bounceStamp_ - 1 ? ahead : glm::dvec3(1.0);
+        sentLast_[sources[k]] = bounceStamp_;
+        const glm::dvec3 delta = factor * (el.radiosity - el.gathered);
         ClusterShape::Powers facetDelta{};
         if (el.shape != kNone) {
             ClusterShape& shape = h_.shape(sources[k]);
-            for (int f = 0; f < shape.facetCount(); ++f) facetDelta[f] = shape.power[f] - shape.gathered[f];
-            shape.gathered = shape.power;
+            for (int f = 0; f < shape.facetCount(); ++f) {
+                facetDelta[f] = factor * (shape.power[f] - shape.gathered[f]);
+                shape.gathered[f] += facetDelta[f];
+            }
         }
         for (std::size_t j = 0; j < el.outLinks.size(); ++j) {
             const Link& l = links_[el.outLinks[j]];
             transfers[first[k] + j] = Transfer{l.receiver, l.source, double(l.gathered) * sentChange(h_, l, delta, facetDelta)};
         }
-        el.gathered = el.radiosity;
+        el.gathered += delta;
     });
     return !sources.empty();
 }

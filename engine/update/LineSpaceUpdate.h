@@ -220,10 +220,40 @@ private:
         ElementId source;
         glm::dvec3 irradiance;
     };
+    // Aitken's extrapolation of the further bounces (as the solve's,
+    // SolveSettings::extrapolate). Once the change the senders send falls by
+    // a steady ratio r per bounce, channel by channel (one mode of the
+    // interreflection is left), each sender sends at once the change of
+    // every bounce to come, 1 / (1 - r) times its own (once a frame, and
+    // only a sender whose change is that of the last bounce), and holds that as
+    // gathered: its radiosity then rises to what it sent, and what the
+    // guess missed goes out with the next bounces (negative where it sent
+    // too much). A receiver's irradiance stays the sum over its links of
+    // what their sources hold as gathered, so a frame converges to the same
+    // solution whether or not it extrapolated. `office`'s light dimmed:
+    // the ratio holds at 0.57 from the third bounce on (each channel's
+    // moves by under 3% of 1 - r).
+    struct BounceSeries {
+        glm::dvec3 last{-1.0};   // the change sent by the last bounce, per channel
+        glm::dvec3 ratio{-1.0};  // its ratio to the one before
+        bool done = false;       // extrapolated once: the rest are plain bounces
+    };
+    std::vector<std::uint32_t> sentLast_;  // per element: the stamp of the bounce it last sent in
+    std::uint32_t bounceStamp_ = 1;
+    // Steady: |r - r_before| <= kSteadyBounceRatio (1 - r) (looser than the
+    // solve's: only the senders above the threshold send). Below the
+    // smallest ratio the bounces to come add under half of the last one
+    // (a chair's change, local, falls by 0.1 to 0.2 a bounce): not worth a
+    // guess. Above the largest, 1 / (1 - r) magnifies the ratio's error.
+    static constexpr double kSteadyBounceRatio = 0.1;
+    static constexpr double kSmallestBounceRatio = 0.3, kLargestBounceRatio = 0.95;
     // The transfers of the visited elements whose radiosity moved by more
     // than the threshold since they were last gathered, in the order of
-    // `visited` and of their links; marks them gathered. False if none moved.
-    bool collectTransfers(const std::vector<ElementId>& visited, double threshold, std::vector<Transfer>& transfers);
+    // `visited` and of their links; marks them gathered. With a series (all
+    // of the bounce's senders send), the change is sent ahead once it falls
+    // steadily. False if none moved.
+    bool collectTransfers(const std::vector<ElementId>& visited, double threshold, std::vector<Transfer>& transfers,
+                          BounceSeries* series = nullptr);
 
     Hierarchy& h_;
     LinkStore& links_;

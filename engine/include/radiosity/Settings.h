@@ -66,6 +66,11 @@ struct UpdateSettings {
     // this fraction of the scene's mean emitted radiosity.
     double bounceThreshold = 1e-3;
     int maxBounces = 100;
+    // Once the change a bounce sends falls by a steady ratio r, each sender
+    // sends the change of every bounce to come at once (Aitken's
+    // extrapolation, as SolveSettings::extrapolate; update/LineSpaceUpdate.h).
+    // Off: plain bounces.
+    bool extrapolateBounces = true;
 };
 
 }  // namespace rad
