@@ -128,7 +128,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         const auto began = std::chrono::steady_clock::now();
         const std::size_t leavesBefore = stats.changedLeaves;
         // A bounce that leaves senders unsent is no term of the series.
-        if (share < 1.0) series = BounceSeries{};
+        if (share < 1.0) series.last = series.ratio = glm::dvec3(-1.0);
         if (!collectTransfers(visited, threshold, transfers, share < 1.0 || !settings.extrapolateBounces ? nullptr : &series))
             break;
         // In the serial order, so that every irradiance gets the same sum.
@@ -167,6 +167,14 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         });
         visited = pushPull(stats);
         touched_.insert(touched_.end(), visited.begin(), visited.end());
+        // What was sent ahead is a sender until its radiosity has come to
+        // what it sent (each bounce checks it against the threshold), even
+        // where no push visits it again.
+        if (!series.sentAhead.empty()) {
+            visited.insert(visited.end(), series.sentAhead.begin(), series.sentAhead.end());
+            std::sort(visited.begin(), visited.end());
+            visited.erase(std::unique(visited.begin(), visited.end()), visited.end());
+        }
         // Its cost per link, the meshing of the leaves it changed included;
         // a cheap bounce lowers the expectation only by degrees.
         const double took = secondsSince(began) + tail_.seconds(stats.changedLeaves - leavesBefore) - tail_.seconds(0);
@@ -244,6 +252,8 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
         if (steady) {
             ahead = 1.0 / (1.0 - ratio);
             series->done = true;  // what follows is the guess's correction, in plain bounces
+            for (ElementId e : sources)
+                if (e < sentLast_.size() && sentLast_[e] == bounceStamp_) series->sentAhead.push_back(e);
         } else {
             series->ratio = ratio;
             series->last = sent;
@@ -253,6 +263,7 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
     // Stamps of the bounce each element last sent in (0: none yet).
     if (sentLast_.size() < h_.size()) sentLast_.resize(h_.size(), 0);
     ++bounceStamp_;
+    const bool extrapolated = ahead != glm::dvec3(1.0);
     tbb::parallel_for(std::size_t(0), sources.size(), [&](std::size_t k) {
         HElement& el = h_[sources[k]];
         // In-place gather of the difference on every link leaving the source.
@@ -260,7 +271,8 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
         // element kept unsent over several (each under the threshold) goes
         // out once (sent ahead, such sums made a moved block's bounces in
         // the Cornell box grow).
-        const glm::dvec3 factor = sentLast_[sources[k]] == bounceStamp_ - 1 ? ahead : glm::dvec3(1.0);
+        const bool sendsAhead = extrapolated && sentLast_[sources[k]] == bounceStamp_ - 1;
+        const glm::dvec3 factor = sendsAhead ? ahead : glm::dvec3(1.0);
         sentLast_[sources[k]] = bounceStamp_;
         const glm::dvec3 delta = factor * (el.radiosity - el.gathered);
         ClusterShape::Powers facetDelta{};
@@ -268,14 +280,16 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
             ClusterShape& shape = h_.shape(sources[k]);
             for (int f = 0; f < shape.facetCount(); ++f) {
                 facetDelta[f] = factor * (shape.power[f] - shape.gathered[f]);
-                shape.gathered[f] += facetDelta[f];
+                shape.gathered[f] = sendsAhead ? shape.gathered[f] + facetDelta[f] : shape.power[f];
             }
         }
         for (std::size_t j = 0; j < el.outLinks.size(); ++j) {
             const Link& l = links_[el.outLinks[j]];
             transfers[first[k] + j] = Transfer{l.receiver, l.source, double(l.gathered) * sentChange(h_, l, delta, facetDelta)};
         }
-        el.gathered += delta;
+        // Held exactly as sent: a thousand moves away and back must return
+        // the original solution to the last bit.
+        el.gathered = sendsAhead ? el.gathered + delta : el.radiosity;
     });
     return !sources.empty();
 }

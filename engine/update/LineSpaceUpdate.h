@@ -237,6 +237,7 @@ private:
         glm::dvec3 last{-1.0};   // the change sent by the last bounce, per channel
         glm::dvec3 ratio{-1.0};  // its ratio to the one before
         bool done = false;       // extrapolated once: the rest are plain bounces
+        std::vector<ElementId> sentAhead;  // the senders that sent ahead
     };
     std::vector<std::uint32_t> sentLast_;  // per element: the stamp of the bounce it last sent in
     std::uint32_t bounceStamp_ = 1;
