@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "radiosity/Engine.h"
+#include "support/Motion.h"
 #include "support/TestScenes.h"
 
 namespace rad {
@@ -26,7 +27,7 @@ TEST(FurtherBounces, ExtrapolatedBouncesReachTheFurnaceAnswerInFewerBounces) {
     int bounces[2] = {0, 0};
     double b[2] = {0.0, 0.0};
     for (bool extrapolate : {false, true}) {
-        Engine engine(test::closedBox(rho), EngineSettings{});
+        Engine engine(test::closedBox(rho), test::coarse());
         ASSERT_TRUE(engine.solve().converged);
         ASSERT_NEAR(boxLuminance(engine), 1.0 / (1.0 - rho), 0.01 / (1.0 - rho));
         UpdateSettings settings;
