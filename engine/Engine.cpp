@@ -117,6 +117,7 @@ struct Engine::State {
     // solver's bound follows the lights.
     void lightChanged(const std::vector<ElementId>& elements) {
         for (ElementId e : elements) refiner.markDirty(e);
+        updater.noteLightChanges(lightLinks.takeChanges());
         solver.setDirectBound(lightLinks.directBound());
     }
     SolveStats stats;
@@ -530,6 +531,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     // the light a point gets from them does not depend on the solution.
     s.setLightThreshold();
     s.lightLinks.linkAll();
+    s.lightLinks.takeChanges();  // the solve pushes everything
     s.solver.setDirectBound(s.lightLinks.directBound());
     // Radiosity starts at emission and direct light, so the first
     // refinement sees the lights.
@@ -940,6 +942,7 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
             s.scene.lights[*light].intensity = *e.emission;
             const std::vector<ElementId> lit = s.lightLinks.refreshIntensity(*light);
             changed.insert(changed.end(), lit.begin(), lit.end());
+            s.updater.noteLightChanges(s.lightLinks.takeChanges());
             s.solver.setDirectBound(s.lightLinks.directBound());
             continue;
         }

@@ -119,18 +119,26 @@ void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>
     }
 }
 
-void LightLinks::sumDirect(std::uint32_t polygon) {
+double LightLinks::sumDirect(std::uint32_t polygon) {
     const ElementId top = h_.polygonElement(polygon);
-    if (top == kNone) return;
+    if (top == kNone) return 0.0;
+    std::vector<std::pair<ElementId, glm::dvec3>> before;
     for (std::vector<ElementId> stack{top}; !stack.empty();) {
         const ElementId e = stack.back();
         stack.pop_back();
+        before.emplace_back(e, h_.direct(e));
         h_.clearDirect(e);
         for (ElementId c : h_[e].children) stack.push_back(c);
     }
     for (std::size_t l = 0; l < links_.size(); ++l)
         for (const LightLink& link : linksOf(l, polygon))
             h_.addDirect(link.receiver, scene_.lights[l].intensity * double(link.irradiance));
+    double squares = 0.0;
+    for (const auto& [e, was] : before) {
+        const double moved = luminance(h_[e].reflectance) * luminance(h_.direct(e) - was);
+        squares += moved * moved * h_[e].area;
+    }
+    return squares;
 }
 
 void LightLinks::linkAll() {
@@ -157,7 +165,7 @@ std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& poly
         bool same = true;
         for (std::size_t l = 0; l < links_.size(); ++l) same = same && before[l][i] == linksOf(l, polygons[i]);
         if (same) continue;
-        sumDirect(polygons[i]);
+        changes_.emplace_back(h_.polygonElement(polygons[i]), sumDirect(polygons[i]));
         changed.push_back(h_.polygonElement(polygons[i]));
     }
     return changed;
@@ -203,7 +211,7 @@ std::vector<ElementId> LightLinks::refreshIntensity(std::uint32_t light) {
     std::sort(lit.begin(), lit.end());
     std::vector<ElementId> changed;
     for (std::uint32_t p : lit) {
-        sumDirect(p);
+        changes_.emplace_back(h_.polygonElement(p), sumDirect(p));
         changed.push_back(h_.polygonElement(p));
     }
     // A light that was dark has no links yet: it is linked now.

@@ -20,6 +20,7 @@
 #include <optional>
 #include <set>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "geometry/RayCaster.h"
@@ -69,6 +70,11 @@ public:
     // the boxes.
     std::vector<std::uint32_t> shadedBy(const std::vector<Aabb>& boxes) const;
 
+    // The polygon elements whose direct light relink, relinkLight,
+    // refinePending or refreshIntensity changed since the last call, each
+    // with how much that moves its radiosity once pushed (the sum over its
+    // elements of (rho dE)^2 A): what a push a deadline defers leaves off.
+    std::vector<std::pair<ElementId, double>> takeChanges() { return std::exchange(changes_, {}); }
     // An upper bound, per channel, of the direct irradiance at any point.
     glm::dvec3 directBound() const;
     std::size_t linkCount() const;
@@ -100,7 +106,12 @@ private:
               std::optional<Clock::time_point> deadline);
     // Clears the direct light of a polygon's quadtree and adds every light's
     // links to it; whether anything changed is for the caller to know.
-    void sumDirect(std::uint32_t polygon);
+    // Returns how much it moves the polygon's radiosity once pushed: the sum
+    // over its elements of (rho dE)^2 A, dE the change of their direct
+    // irradiance (luminance).
+    double sumDirect(std::uint32_t polygon);
+    // The polygons summed again since takeChanges(), with sumDirect's measure.
+    std::vector<std::pair<ElementId, double>> changes_;
     bool facesLight(const PunctualLight& light, std::uint32_t polygon) const;
     void sizeTables();
 

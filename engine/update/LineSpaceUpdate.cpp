@@ -189,7 +189,7 @@ void LineSpaceUpdate::prunePending() {
     pending_.erase(std::unique(pending_.begin(), pending_.end()), pending_.end());
 }
 
-void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_point start) const {
+void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_point start) {
     // On all cores: at budget 0 the stale links' keys are a tenth of a frame.
     stats.links = tbb::parallel_reduce(
         tbb::blocked_range<ElementId>(0, ElementId(h_.size())), std::size_t(0),
@@ -202,6 +202,10 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     stats.pending = pending_.size();
     stats.stale = stale_.size();
     stats.unsent = unsent_.size() + waiting_.size() + solver_.unpushed().size();
+    // The light changes whose push has been made are in the solution now.
+    std::vector<ElementId> unpushed = solver_.unpushed();
+    std::sort(unpushed.begin(), unpushed.end());
+    std::erase_if(lightChanges_, [&](const auto& c) { return !std::binary_search(unpushed.begin(), unpushed.end(), c.first); });
     stats.estimatedError = estimatedError();
     stats.totalSeconds = secondsSince(start);
 }
@@ -268,6 +272,8 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
     // (times their reflectance), over their own area.
     for (ElementId e : waiting_)
         if (e < waitingChange_.size() && waitingChange_[e] > 0.0) squares += waitingChange_[e] * waitingChange_[e] * h_[e].area;
+    // Direct light waiting for its push: over the elements it lands on.
+    for (const auto& [e, moved] : lightChanges_) squares += moved;
     // What unsent elements have yet to send spreads over what they see: a
     // moving shadow's darker and lighter parts send changes of opposite
     // signs that cancel there, so their sum counts, spread over the scene.

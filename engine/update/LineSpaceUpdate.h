@@ -120,6 +120,12 @@ public:
     // that share (a deferred move: the light its links carry, in the share
     // of its size the object has moved).
     double estimatedError(const std::vector<std::pair<ElementId, double>>& deferred = {}) const;
+    // Elements whose direct light (punctual lights) changed, each with how
+    // much that moves its radiosity once pushed (LightLinks::takeChanges):
+    // while a deadline defers their push, the estimate counts it.
+    void noteLightChanges(const std::vector<std::pair<ElementId, double>>& changes) {
+        lightChanges_.insert(lightChanges_.end(), changes.begin(), changes.end());
+    }
     // How far a move took an object, in its size: the larger distance its
     // box's corners moved over the box's diagonal (a turn moves them too).
     static double motionShare(const Aabb& from, const Aabb& to);
@@ -187,7 +193,7 @@ private:
     void setDeadline(std::chrono::steady_clock::time_point start, const UpdateSettings& settings);
     // What a budget (kUnlimited: none) leaves after `spent` link updates.
     static std::size_t budgetLeft(std::size_t budget, std::size_t spent);
-    void finish(FrameStats& stats, std::chrono::steady_clock::time_point start) const;
+    void finish(FrameStats& stats, std::chrono::steady_clock::time_point start);
     // Sec. 6.2: heap key factor for a link whose shaft the object just entered.
     static constexpr double kEnteringBoost = 4.0;
     double heapKey(const Link& l) const;
@@ -239,6 +245,8 @@ private:
         bool done = false;       // extrapolated once: the rest are plain bounces
         std::vector<ElementId> sentAhead;  // the senders that sent ahead
     };
+    // noteLightChanges' elements, kept while their push waits (finish()).
+    std::vector<std::pair<ElementId, double>> lightChanges_;
     std::vector<std::uint32_t> sentLast_;  // per element: the stamp of the bounce it last sent in
     std::uint32_t bounceStamp_ = 1;
     // Steady: |r - r_before| <= kSteadyBounceRatio (1 - r) (looser than the
