@@ -176,9 +176,8 @@ struct Engine::State {
 
     std::optional<std::uint32_t> dynamic;  // the last chosen
     // The dynamic layer: every object chosen so far, with its polygons and
-    // transform as chosen (moves are applied to those, not accumulated).
-    // An object of the dynamic layer: its polygons and transform when it was
-    // chosen, and its instance in the layer (moved from there).
+    // transform as chosen (moves are applied to those, not accumulated), and
+    // its Embree instance in the layer (placed from there).
     struct Chosen {
         std::vector<Polygon> polygons;
         glm::dmat4 world{1.0};
