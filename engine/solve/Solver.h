@@ -62,8 +62,9 @@ class Solver {
     //
     // On a deadline (`stop`), a dirty element whose subtree's push is
     // expected to end after it waits, unpushed: its subtree keeps its B, and
-    // the next partial push-pull pushes it (or lets it wait again). The expected cost is the element's share of the scene's
-    // surface area times `secondsPerArea`: a dirty cluster near the root
+    // the next partial push-pull pushes it (or lets it wait again). The
+    // expected cost is the element's share of the scene's surface area
+    // times `secondsPerArea`: a dirty cluster near the root
     // (a chair's light reaching most of a building floor through one coarse
     // link) is a push of most of the scene.
     struct PushDeadline {

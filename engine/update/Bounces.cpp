@@ -242,7 +242,12 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
             for (int k = 0; k < shape.facetCount(); ++k) sent += glm::abs(shape.power[k] - shape.gathered[k]);
         }
     }
-    glm::dvec3 ahead(1.0);  // what each sender that sent in the last bounce sends, times its change
+    // Only a change of one bounce is a term of the series: a sender sends
+    // ahead if it sent in the last bounce. What an element kept unsent over
+    // several (each under the threshold) goes out once (sent ahead, such
+    // sums made a moved block's bounces in the Cornell box grow).
+    glm::dvec3 ahead(1.0);  // what a sender that sends ahead sends, times its change
+    std::vector<char> sendsAhead(sources.size(), 0);
     if (series && !series->done) {
         const glm::dvec3 ratio = glm::all(glm::greaterThan(series->last, glm::dvec3(0.0))) ? sent / series->last : glm::dvec3(-1.0);
         bool steady = true;
@@ -252,35 +257,30 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
         if (steady) {
             ahead = 1.0 / (1.0 - ratio);
             series->done = true;  // what follows is the guess's correction, in plain bounces
-            for (ElementId e : sources)
-                if (e < sentLast_.size() && sentLast_[e] == bounceStamp_) series->sentAhead.push_back(e);
+            for (std::size_t k = 0; k < sources.size(); ++k)
+                if (std::binary_search(series->lastSenders.begin(), series->lastSenders.end(), sources[k])) {
+                    sendsAhead[k] = 1;
+                    series->sentAhead.push_back(sources[k]);
+                }
         } else {
             series->ratio = ratio;
             series->last = sent;
+            series->lastSenders = sources;
+            std::sort(series->lastSenders.begin(), series->lastSenders.end());
         }
     }
     transfers.resize(count);
-    // Stamps of the bounce each element last sent in (0: none yet).
-    if (sentLast_.size() < h_.size()) sentLast_.resize(h_.size(), 0);
-    ++bounceStamp_;
-    const bool extrapolated = ahead != glm::dvec3(1.0);
     tbb::parallel_for(std::size_t(0), sources.size(), [&](std::size_t k) {
         HElement& el = h_[sources[k]];
         // In-place gather of the difference on every link leaving the source.
-        // Only a change of one bounce is a term of the series: what an
-        // element kept unsent over several (each under the threshold) goes
-        // out once (sent ahead, such sums made a moved block's bounces in
-        // the Cornell box grow).
-        const bool sendsAhead = extrapolated && sentLast_[sources[k]] == bounceStamp_ - 1;
-        const glm::dvec3 factor = sendsAhead ? ahead : glm::dvec3(1.0);
-        sentLast_[sources[k]] = bounceStamp_;
+        const glm::dvec3 factor = sendsAhead[k] ? ahead : glm::dvec3(1.0);
         const glm::dvec3 delta = factor * (el.radiosity - el.gathered);
         ClusterShape::Powers facetDelta{};
         if (el.shape != kNone) {
             ClusterShape& shape = h_.shape(sources[k]);
             for (int f = 0; f < shape.facetCount(); ++f) {
                 facetDelta[f] = factor * (shape.power[f] - shape.gathered[f]);
-                shape.gathered[f] = sendsAhead ? shape.gathered[f] + facetDelta[f] : shape.power[f];
+                shape.gathered[f] = sendsAhead[k] ? shape.gathered[f] + facetDelta[f] : shape.power[f];
             }
         }
         for (std::size_t j = 0; j < el.outLinks.size(); ++j) {
@@ -289,7 +289,7 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, do
         }
         // Held exactly as sent: a thousand moves away and back must return
         // the original solution to the last bit.
-        el.gathered = sendsAhead ? el.gathered + delta : el.radiosity;
+        el.gathered = sendsAhead[k] ? el.gathered + delta : el.radiosity;
     });
     return !sources.empty();
 }

@@ -206,15 +206,6 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     std::vector<ElementId> unpushed = solver_.unpushed();
     std::sort(unpushed.begin(), unpushed.end());
     std::erase_if(lightChanges_, [&](const auto& c) { return !std::binary_search(unpushed.begin(), unpushed.end(), c.first); });
-    // One entry per element, however many frames its push waits.
-    std::sort(lightChanges_.begin(), lightChanges_.end());
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < lightChanges_.size(); ++i)
-        if (kept > 0 && lightChanges_[kept - 1].first == lightChanges_[i].first)
-            lightChanges_[kept - 1].second += lightChanges_[i].second;
-        else
-            lightChanges_[kept++] = lightChanges_[i];
-    lightChanges_.resize(kept);
     stats.estimatedError = estimatedError();
     stats.totalSeconds = secondsSince(start);
 }

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <array>
 #include <cstdint>
@@ -124,7 +125,7 @@ public:
     // much that moves its radiosity once pushed (LightLinks::takeChanges):
     // while a deadline defers their push, the estimate counts it.
     void noteLightChanges(const std::vector<std::pair<ElementId, double>>& changes) {
-        lightChanges_.insert(lightChanges_.end(), changes.begin(), changes.end());
+        for (const auto& [e, moved] : changes) lightChanges_[e] += moved;
     }
     // How far a move took an object, in its size: the larger distance its
     // box's corners moved over the box's diagonal (a turn moves them too).
@@ -231,8 +232,8 @@ private:
     // a steady ratio r per bounce, channel by channel (one mode of the
     // interreflection is left), each sender sends at once the change of
     // every bounce to come, 1 / (1 - r) times its own (once a frame, and
-    // only a sender whose change is that of the last bounce), and holds that as
-    // gathered: its radiosity then rises to what it sent, and what the
+    // only a sender whose change is that of the last bounce), and holds that
+    // as gathered: its radiosity then rises to what it sent, and what the
     // guess missed goes out with the next bounces (negative where it sent
     // too much). A receiver's irradiance stays the sum over its links of
     // what their sources hold as gathered, so a frame converges to the same
@@ -243,12 +244,11 @@ private:
         glm::dvec3 last{-1.0};   // the change sent by the last bounce, per channel
         glm::dvec3 ratio{-1.0};  // its ratio to the one before
         bool done = false;       // extrapolated once: the rest are plain bounces
-        std::vector<ElementId> sentAhead;  // the senders that sent ahead
+        std::vector<ElementId> lastSenders;  // the last bounce's, sorted
+        std::vector<ElementId> sentAhead;    // the senders that sent ahead
     };
     // noteLightChanges' elements, kept while their push waits (finish()).
-    std::vector<std::pair<ElementId, double>> lightChanges_;
-    std::vector<std::uint32_t> sentLast_;  // per element: the stamp of the bounce it last sent in
-    std::uint32_t bounceStamp_ = 1;
+    std::map<ElementId, double> lightChanges_;
     // Steady: |r - r_before| <= kSteadyBounceRatio (1 - r) (looser than the
     // solve's: only the senders above the threshold send). Below the
     // smallest ratio the bounces to come add under half of the last one
