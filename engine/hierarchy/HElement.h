@@ -84,11 +84,6 @@ struct HElement {
     // that finer links leave uncovered).
     double coverage = 0.0;
     glm::dvec3 radiosity{0.0};   // B; for clusters the area-weighted mean below
-    // Surfaces: the largest luminance of B among the leaves below (a leaf's
-    // own). A link sends the mean B of its source, which stands for its
-    // brightest part only as long as the link is fine enough: refinement
-    // judges surfaces by this (update/OracleSteps.h).
-    double peak = 0.0;
     // The B that the receivers of this element's links currently hold in
     // their irradiance: the in-place gather adds F times the difference.
     glm::dvec3 gathered{0.0};
@@ -97,9 +92,17 @@ struct HElement {
     // anchor * kappa^level, the level set by how far B is from anchorLight
     // (its value when the solve ended), so that a scene moved back to where
     // it was solved is refined as it was.
-    double oracle = 0.0;
-    double anchor = 0.0;
-    double anchorLight = 0.0;
+    // Single precision, as the few digits a threshold test needs (four
+    // bytes each matter: a building floor's links hold 64 bytes each,
+    // elements included).
+    float oracle = 0.0f;
+    float anchor = 0.0f;
+    float anchorLight = 0.0f;
+    // Surfaces: the largest luminance of B among the leaves below (a leaf's
+    // own). A link sends the mean B of its source, which stands for its
+    // brightest part only as long as the link is fine enough: refinement
+    // judges surfaces by this (update/OracleSteps.h).
+    float peak = 0.0f;
 
     // Links arriving here (this element is the receiver), in source order
     // (links/SourceOrder.h).

@@ -342,7 +342,7 @@ std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool re
         // Numbered again (attachToRoot), a surface keeps the size it had: its
         // area after a move may differ by a rounding error, and the depth of
         // its existing quadtree must stay allowed.
-        const std::uint64_t count = renumber ? bounds_[id].range.size() : quadtreeIndexCount(e.area, minArea_, what);
+        const std::uint64_t count = renumber ? bounds_[id].range.size() : quadtreeIndexCount(e.area, minArea_ / 4.0, what);
         bounds_[id].range = {first, checkedAdd(first, count - 1, what)};
         assignQuadtreeRanges(id);
         return bounds_[id].range.last;
@@ -398,13 +398,20 @@ void Hierarchy::attachToRoot(ElementId cluster) {
     assignRanges(root_, 0, true);
 }
 
+// The index ranges number one level below the area threshold (children of
+// at least minArea / 4): a leaf at the threshold has a range of 5.
 bool Hierarchy::canSubdivide(ElementId id) const {
+    const HElement& e = elements_[id];
+    return e.isSurface() && bounds_[id].range.size() > 5 && e.depth < HElement::kMaxDepth;
+}
+
+bool Hierarchy::canSubdivideNearContact(ElementId id) const {
     const HElement& e = elements_[id];
     return e.isSurface() && bounds_[id].range.size() > 1 && e.depth < HElement::kMaxDepth;
 }
 
 void Hierarchy::subdivide(ElementId id) {
-    if (!elements_[id].isLeaf() || !canSubdivide(id)) return;
+    if (!elements_[id].isLeaf() || !canSubdivideNearContact(id)) return;
     const HElement parent = elements_[id];  // copy: add() may reallocate
     const IndexRange parentRange = bounds_[id].range;
     // Parametric corners of the four children. Quads: the four sub-squares.

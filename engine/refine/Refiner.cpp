@@ -133,6 +133,16 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
         // larger patch would miss the peak of a small neighbour's kernel.
         FormFactorEstimate e = estimateFormFactor(rcv.patch, src.patch, rcv.area > src.area ? 2 : order);
         if (rcv.area > src.area) e.mean = src.area / rcv.area * estimateFormFactor(src.patch, rcv.patch, order).mean;
+        // A surface facing the receiver close in front of it (a door 2 mm
+        // before a wall) may cover a strip along the receiver's edge that the
+        // Gauss points miss: the variation is judged at the corners too.
+        if (facingClose(s, r))
+            for (int k = 0; k < rcv.patch.n; ++k) {
+                const glm::dvec3 corner = rcv.patch.v[k] + 0.01 * (rcv.center - rcv.patch.v[k]);
+                const double f = pointToPolygonFormFactor(corner, rcv.normal, src.patch);
+                e.min = std::min(e.min, f);
+                e.max = std::max(e.max, f);
+            }
         return e;
     }
     // A cluster end: the source as a few points (ClusterTransfer.h). A
@@ -365,22 +375,48 @@ void Refiner::linkRoot() {
     attach(l);
 }
 
-bool Refiner::canSplit(ElementId e) const {
+bool Refiner::canSplit(ElementId e, bool nearContact) const {
     const HElement& el = h_[e];
-    return el.isSurface() ? h_.canSubdivide(e) : !el.children.empty();
+    if (!el.isSurface()) return !el.children.empty();
+    return nearContact ? h_.canSubdivideNearContact(e) : h_.canSubdivide(e);
+}
+
+bool Refiner::facingClose(ElementId s, ElementId r) const {
+    const HElement& a = h_[s];
+    const HElement& b = h_[r];
+    if (!a.isSurface() || !b.isSurface() || glm::dot(a.normal, b.normal) > -0.9) return false;
+    const double gap = std::abs(glm::dot(b.normal, a.center - b.center));
+    return gap < 0.1 * std::max(radius(h_.box(s)), radius(h_.box(r)));
+}
+
+// The push gives a subdivided receiver's children the light of its coarse
+// links where finer links leave their view uncovered (Solver::shareOf). A
+// surface close in front of part of the receiver covers that part's whole
+// view, but a link from it at the receiver's level counts for the mean
+// child: the children it covers would take the coarse light of the room. Its
+// link goes down to the children, as long as the view it covers holds more
+// of the receiver's light than the threshold.
+bool Refiner::goesToChildren(const Link& link) const {
+    const HElement& r = h_[link.receiver];
+    return !r.children.empty() && r.isSurface() && facingClose(link.source, link.receiver) &&
+           r.oracle * coupling(link, link.unoccluded) > settings_.epsilon * settings_.referencePower;
 }
 
 Refiner::Split Refiner::chooseSplit(const Link& link) const {
     if (link.source == link.receiver) return canSplit(link.source) ? Split::Both : Split::None;
-    const bool cs = canSplit(link.source), cr = canSplit(link.receiver);
+    if (goesToChildren(link)) return Split::Receiver;
+    const bool close = facingClose(link.source, link.receiver);
+    const bool cs = canSplit(link.source, close), cr = canSplit(link.receiver, close);
     // A shadow boundary across one end only: split that end. The rays run
     // from each of the source's four points to each of the receiver's four
     // (ray 4 i + j: source point i, receiver point j). When whether a ray is
     // blocked depends only on its source point, the blocker stands right
     // in front of the source (a door 2 mm before a doorway's edge): splitting
     // the receiver would leave every child link partly visible, each sending
-    // the source's mean, lit and hidden parts alike.
-    if (cs && cr && link.rays == 16 && h_[link.source].isSurface() && h_[link.receiver].isSurface()) {
+    // the source's mean, lit and hidden parts alike. Such a boundary is split
+    // one level below the area threshold: a strip 5 cm wide is otherwise
+    // left in elements 5 cm wide (Hierarchy::canSubdivideNearContact).
+    if (link.rays == 16 && h_[link.source].isSurface() && h_[link.receiver].isSurface()) {
         const unsigned blocked = unsigned(link.blockedStatic | link.blockedDynamic);
         if (blocked != 0u && blocked != 0xFFFFu) {
             bool acrossSource = false, acrossReceiver = false;
@@ -390,7 +426,8 @@ Refiner::Split Refiner::chooseSplit(const Link& link) const {
                 acrossReceiver = acrossReceiver || (row != 0u && row != 0xFu);
                 acrossSource = acrossSource || (column != 0u && column != 0x1111u);
             }
-            if (acrossSource != acrossReceiver) return acrossSource ? Split::Source : Split::Receiver;
+            if (acrossSource && !acrossReceiver && canSplit(link.source, true)) return Split::Source;
+            if (acrossReceiver && !acrossSource && canSplit(link.receiver, true)) return Split::Receiver;
         }
     }
     // Equal areas (with a little slack, so a scaled scene decides alike): the receiver.
@@ -402,6 +439,7 @@ Refiner::Split Refiner::chooseSplit(const Link& link) const {
 
 bool Refiner::wouldRefine(const Link& link) const {
     if (chooseSplit(link) == Split::None) return false;
+    if (goesToChildren(link)) return true;
     if (!admissible(link.source, link.receiver)) return true;
     // Partly occluded links are judged by their unoccluded transfer, so that
     // shadow boundaries get refined. So are links with a cluster end whatever

@@ -130,7 +130,15 @@ private:
     static constexpr double kEstimatedWeight = 2.5;
     enum class Split { None, Source, Receiver, Both };
     Split chooseSplit(const Link& link) const;
-    bool canSplit(ElementId e) const;
+    bool canSplit(ElementId e, bool nearContact = false) const;
+    // Two surfaces facing each other, nearly parallel, with a gap under a
+    // tenth of their size (a door 2 mm before a wall, a box on a shelf):
+    // their variation is judged at the corners too, and either may be
+    // split one level below the area threshold.
+    bool facingClose(ElementId s, ElementId r) const;
+    // Whether a link from a close facing source must reach the receiver's
+    // children (see the .cpp): it is refined whatever its own transfer.
+    bool goesToChildren(const Link& link) const;
     FormFactorEstimate unoccludedFormFactor(ElementId s, ElementId r) const;
     // A transfer of the link (unoccluded F, or kernel G) times the receiving area it reaches (A_r F for
     // a surface receiver, G times the projected area for a cluster).

@@ -170,5 +170,29 @@ TEST(Hierarchy, SubdivisionStopsWhereFloatCornersStayExact) {
     }
 }
 
+// Children keep at least the area threshold, except near a contact
+// (Refiner::chooseSplit), where they may go one level further: a unit
+// square at a threshold of 1/16 splits twice, and near a contact three
+// times.
+TEST(Hierarchy, SubdivisionKeepsTheAreaThresholdAndOneLevelMoreNearAContact) {
+    using V = glm::dvec3;
+    Scene s;
+    const auto m = test::addMaterial(s, V(0.5), V(0.0));
+    test::addQuadObject(s, "quad", m, {{V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)}});
+    Hierarchy h(s, 1.0 / 16.0);
+    ElementId e = h.polygonElement(0);
+    std::vector<bool> normal, nearContact;
+    for (int depth = 0; depth < 5 && h.canSubdivideNearContact(e); ++depth) {
+        normal.push_back(h.canSubdivide(e));
+        nearContact.push_back(h.canSubdivideNearContact(e));
+        h.subdivide(e);
+        e = h[e].children[0];
+    }
+    EXPECT_EQ(normal, (std::vector<bool>{true, true, false}));
+    EXPECT_EQ(nearContact, (std::vector<bool>{true, true, true}));
+    EXPECT_FALSE(h.canSubdivideNearContact(e));
+    EXPECT_DOUBLE_EQ(h[e].area, 1.0 / 64.0);
+}
+
 }  // namespace
 }  // namespace rad

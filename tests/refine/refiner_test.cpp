@@ -33,8 +33,8 @@ struct Split {
 
 // Refines the link from the emitter (facing down, y = 2) to the floor
 // (facing up, y = 0) once, with a black blocker in the static scene.
-Split refineOnce(const Scene& scene) {
-    Hierarchy h(scene, 1e-6);
+Split refineOnce(const Scene& scene, double minArea = 1e-6) {
+    Hierarchy h(scene, minArea);
     LinkStore links;
     RayCaster rays;
     std::vector<std::uint32_t> all(scene.polygons.size());
@@ -88,11 +88,73 @@ TEST(Refiner, SplitsTheReceiverWhenTheShadowBoundaryCrossesIt) {
     EXPECT_TRUE(split.receiver);
 }
 
+// The same floor at the area threshold (its children would be smaller): a
+// boundary cast by a blocker right at it is split one level further.
+TEST(Refiner, SplitsAShadowBoundaryRightAtTheReceiverBelowTheAreaThreshold) {
+    const Split split = refineOnce(emitterFloorBlocker(5.0, 1.0, horizontal(0.01, -1.0, 0.5, -1.0, 2.0, false)), 0.5);
+    EXPECT_GT(split.visibility, 0.0);
+    EXPECT_LT(split.visibility, 1.0);
+    EXPECT_TRUE(split.receiver);
+}
+
 // No boundary that one end alone carries (nothing blocks): the larger end.
 TEST(Refiner, SplitsTheLargerEndOtherwise) {
     const Split split = refineOnce(emitterFloorBlocker(1.0, 5.0, horizontal(5.0, 10.0, 11.0, 10.0, 11.0, true)));
     EXPECT_EQ(split.visibility, 1.0);
     EXPECT_TRUE(split.receiver);
+}
+
+// A plate 2 mm above the floor's edge strip (x from 0.9 to 1.1 of a unit
+// floor): the floor's Gauss points (at x = 0.21 and 0.79) hardly see it,
+// its corners under it see almost nothing else. The form factor's
+// variation across the floor counts the corners (measured 0.96); for the
+// plate 20 cm up, no longer close, only the Gauss points count (0.15).
+struct PlateOverFloor {
+    Scene scene;
+    Hierarchy h;
+    LinkStore links;
+    RayCaster rays;
+    Refiner refiner;
+    explicit PlateOverFloor(double height)
+        : scene(build(height)), h(scene, 1e-4), refiner(h, links, rays, RefineSettings{}) {}
+    static Scene build(double height) {
+        Scene s;
+        s.sourcePath = "plate";
+        const auto grey = test::addMaterial(s, V(0.5), V(0.0), "grey");
+        test::addQuadObject(s, "floor", grey, {horizontal(0.0, 0.0, 1.0, 0.0, 1.0, true)});
+        test::addQuadObject(s, "plate", grey, {horizontal(height, 0.9, 1.1, 0.0, 1.0, false)});
+        return s;
+    }
+    Link plateToFloor() const { return refiner.compute(h.polygonElement(1), h.polygonElement(0)); }
+};
+
+TEST(Refiner, ACloseFacingSurfaceOverAStripTheGaussPointsMissCountsInTheVariation) {
+    PlateOverFloor close(0.002), far(0.2);
+    EXPECT_GT(close.plateToFloor().spread, 0.5f);
+    EXPECT_LT(far.plateToFloor().spread, 0.2f);
+}
+
+// The floor subdivided, its light bright: the close plate's link goes down
+// to the floor's children, whatever its own transfer (the plate is black),
+// so that the children under the plate count it in their coverage. A dark
+// floor keeps the link where it is.
+TEST(Refiner, ACloseFacingSourceReachesTheReceiversChildrenWhereTheReceiverIsBright) {
+    PlateOverFloor p(0.002);
+    const ElementId floor = p.h.polygonElement(0);
+    p.h.subdivide(floor);
+    Link link = p.plateToFloor();
+    ASSERT_GT(link.unoccluded, 0.0f);
+    EXPECT_FALSE(p.refiner.wouldRefine(link)) << "a dark floor";
+    p.h[floor].oracle = 1.0f;
+    ASSERT_TRUE(p.refiner.wouldRefine(link));
+    const LinkId id = p.refiner.attach(link);
+    std::vector<LinkId> created;
+    p.refiner.refine({id}, created);
+    ASSERT_FALSE(created.empty());
+    for (LinkId c : created) {
+        EXPECT_EQ(p.links[c].source, p.h.polygonElement(1));
+        EXPECT_EQ(p.h[p.links[c].receiver].parent, floor);
+    }
 }
 
 }  // namespace

@@ -132,10 +132,10 @@ TEST(Light, OverlappingShadowsDarkenNoMoreThanEither) {
 // No straight line crosses a closed door, whether the door is marked dynamic
 // (its occlusion in the dynamic part of the visibility) or not: every ray
 // through the doorway is blocked, and the dark room gets only what constant
-// elements straddling the door's edges pass on. A door in the reveal or
-// against the wall keeps the dark room under the 1% of its
-// open-door light; one 2 mm off the wall under 2% (README, "Known limits":
-// measured 1.8%).
+// elements straddling the door's edges pass on. The 1% of the
+// open-door light holds for a door 2 mm in front of the wall (measured
+// 0.70%), against it and in the reveal; a door 2 mm behind the wall, on
+// the dark room's side, is held to 2% (README, "Known limits": 1.28%).
 TEST(Light, ClosedDoorIsLightTight) {
     Scene open = test::doorwayScene(false);
     const glm::dmat4 opened = test::rotationAbout(test::doorHinge(), V(0, 1, 0), 90.0);
@@ -149,12 +149,13 @@ TEST(Light, ClosedDoorIsLightTight) {
     for (bool dynamic : {true, false}) {
         Engine closed(test::doorwayScene(dynamic), EngineSettings{});
         ASSERT_TRUE(closed.solve().converged);
-        EXPECT_LT(regionLuminance(closed, "dark-"), 0.02 * lit) << (dynamic ? "dynamic" : "static") << " door";
+        EXPECT_LT(regionLuminance(closed, "dark-"), 0.01 * lit) << (dynamic ? "dynamic" : "static") << " door";
     }
-    for (auto placement : {test::DoorPlacement::AgainstTheWall, test::DoorPlacement::InTheReveal}) {
+    for (auto placement : {test::DoorPlacement::AgainstTheWall, test::DoorPlacement::InTheReveal, test::DoorPlacement::GapBehind}) {
         Engine closed(test::doorwayScene(true, placement), EngineSettings{});
         ASSERT_TRUE(closed.solve().converged);
-        EXPECT_LT(regionLuminance(closed, "dark-"), 0.01 * lit) << int(placement);
+        const double limit = placement == test::DoorPlacement::GapBehind ? 0.02 : 0.01;
+        EXPECT_LT(regionLuminance(closed, "dark-"), limit * lit) << int(placement);
     }
 }
 

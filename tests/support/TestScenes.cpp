@@ -151,11 +151,11 @@ Scene doorwayScene(bool doorDynamic, DoorPlacement placement) {
     addQuadObject(s, "dark-block", wall, boxFaces(V(2.8, 0.0, 3.5), V(3.4, 0.8, 4.1), false));
     // The door, faces out, no bottom: in front of the wall x 1.45..2.55, up
     // to 2.05, z 1.96..1.998 (or 2.0, touching); in the reveal x 1.5..2.5,
-    // up to 2.0, z 2.03..2.07.
-    auto door = placement == DoorPlacement::InTheReveal
-                    ? boxFaces(V(1.5, 0.0, 2.03), V(2.5, 2.0, 2.07), false)
-                    : boxFaces(V(1.45, 0.0, placement == DoorPlacement::GapInFront ? 1.96 : 1.962),
-                               V(2.55, 2.05, placement == DoorPlacement::GapInFront ? 1.998 : 2.0), false);
+    // up to 2.0, z 2.03..2.07; behind the wall z 2.102..2.14.
+    auto door = placement == DoorPlacement::InTheReveal ? boxFaces(V(1.5, 0.0, 2.03), V(2.5, 2.0, 2.07), false)
+                : placement == DoorPlacement::GapBehind   ? boxFaces(V(1.45, 0.0, 2.102), V(2.55, 2.05, 2.14), false)
+                                                          : boxFaces(V(1.45, 0.0, placement == DoorPlacement::GapInFront ? 1.96 : 1.962),
+                                                                     V(2.55, 2.05, placement == DoorPlacement::GapInFront ? 1.998 : 2.0), false);
     door.erase(door.begin());  // the -y face rests on the floor
     addQuadObject(s, "door", paint, door, doorDynamic);
     return s;

@@ -45,7 +45,10 @@ Scene roomWithBlock(double scale = 1.0, glm::dvec3 blockOffset = glm::dvec3(0.0)
 // room is named "dark-...". doorHinge() is the hinge line of the door in
 // front of the wall (axis +y): a positive turn about it opens the door into
 // the corridor.
-enum class DoorPlacement { GapInFront, AgainstTheWall, InTheReveal };
+// Where the closed door stands: 2 mm in front of the wall (the corridor's
+// side), against it, filling the opening in the reveal, or 2 mm behind the
+// wall on the dark room's side.
+enum class DoorPlacement { GapInFront, AgainstTheWall, InTheReveal, GapBehind };
 Scene doorwayScene(bool doorDynamic = true, DoorPlacement placement = DoorPlacement::GapInFront);
 glm::dvec3 doorHinge();
 
