@@ -405,8 +405,7 @@ bool Refiner::goesToChildren(const Link& link) const {
 Refiner::Split Refiner::chooseSplit(const Link& link) const {
     if (link.source == link.receiver) return canSplit(link.source) ? Split::Both : Split::None;
     if (goesToChildren(link)) return Split::Receiver;
-    const bool close = facingClose(link.source, link.receiver);
-    const bool cs = canSplit(link.source, close), cr = canSplit(link.receiver, close);
+    const bool cs = canSplit(link.source), cr = canSplit(link.receiver);
     // A shadow boundary across one end only: split that end. The rays run
     // from each of the source's four points to each of the receiver's four
     // (ray 4 i + j: source point i, receiver point j). When whether a ray is
