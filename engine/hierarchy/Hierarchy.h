@@ -95,8 +95,8 @@ public:
     // Surfaces: whether children may be made (each keeps at least minArea).
     bool canSubdivide(ElementId id) const;
     // The same one level further (children of at least minArea / 4), for a
-    // shadow boundary cast by a blocker right at the surface
-    // (Refiner::chooseSplit).
+    // shadow boundary cast by a blocker right at the surface, or a surface
+    // shining on another close in front of it (Refiner::chooseSplit).
     bool canSubdivideNearContact(ElementId id) const;
     // Makes the four children of a surface leaf (no-op if they exist).
     void subdivide(ElementId id);

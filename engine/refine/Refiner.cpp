@@ -405,7 +405,10 @@ bool Refiner::goesToChildren(const Link& link) const {
 Refiner::Split Refiner::chooseSplit(const Link& link) const {
     if (link.source == link.receiver) return canSplit(link.source) ? Split::Both : Split::None;
     if (goesToChildren(link)) return Split::Receiver;
-    const bool cs = canSplit(link.source), cr = canSplit(link.receiver);
+    // A source close in front of the receiver may split one level below the
+    // area threshold: lit on one part and hidden on the other (a door's lit
+    // face over a doorway's edge), it would send the gap the mean of both.
+    const bool cs = canSplit(link.source, facingClose(link.source, link.receiver)), cr = canSplit(link.receiver);
     // A shadow boundary across one end only: split that end. The rays run
     // from each of the source's four points to each of the receiver's four
     // (ray 4 i + j: source point i, receiver point j). When whether a ray is

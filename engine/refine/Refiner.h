@@ -133,7 +133,8 @@ private:
     bool canSplit(ElementId e, bool nearContact = false) const;
     // Two surfaces facing each other, nearly parallel, with a gap under a
     // tenth of their size (a door 2 mm before a wall, a box on a shelf):
-    // the form factor's variation is judged at the receiver's corners too.
+    // the form factor's variation is judged at the receiver's corners too,
+    // and the source may split one level below the area threshold.
     bool facingClose(ElementId s, ElementId r) const;
     // Whether a link from a close facing source must reach the receiver's
     // children (see the .cpp): it is refined whatever its own transfer.
