@@ -50,7 +50,11 @@ void keepShare(std::vector<T>& v, double share, const Cost& cost, const Priority
 }  // namespace
 
 void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSettings& settings, FrameStats& stats) {
-    const double threshold = settings.bounceThreshold * referenceRadiosity_;
+    // A move's frames send only the larger changes; what lies between the
+    // two thresholds waits, unsent, for the next frame or idle time.
+    const double sendAll = settings.bounceThreshold * referenceRadiosity_;
+    const double threshold =
+        moving_ ? std::max(settings.moveBounceThreshold * referenceRadiosity_, sendAll) : sendAll;
     std::vector<Transfer> transfers;
     // Each element waits unsent once, and the links leaving what waits are
     // counted as it joins.
@@ -129,8 +133,11 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         const std::size_t leavesBefore = stats.changedLeaves;
         // A bounce that leaves senders unsent is no term of the series.
         if (share < 1.0) series.last = series.ratio = glm::dvec3(-1.0);
-        if (!collectTransfers(visited, threshold, transfers, share < 1.0 || !settings.extrapolateBounces ? nullptr : &series))
-            break;
+        std::vector<ElementId> held;
+        const bool sent = collectTransfers(visited, {threshold, sendAll, settings.moveBounceThreshold}, transfers,
+                                           share < 1.0 || !settings.extrapolateBounces ? nullptr : &series, held);
+        for (ElementId e : held) defer(e, h_[e].outLinks.size());
+        if (!sent) break;
         // In the serial order, so that every irradiance gets the same sum.
         // Bound by memory: the receivers a few transfers ahead are asked for early.
         constexpr std::size_t kAhead = 8;
@@ -205,31 +212,41 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
     waitingPushSeconds_ = std::max(took / share, 0.75 * waitingPushSeconds_);
 }
 
-bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, double threshold,
-                                       std::vector<Transfer>& transfers, BounceSeries* series) {
+bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, Thresholds threshold,
+                                       std::vector<Transfer>& transfers, BounceSeries* series,
+                                       std::vector<ElementId>& held) {
     // The senders and their transfers are found on all cores: reading the
-    // elements and links is most of a bounce.
+    // elements and links is most of a bounce. 2: sends; 1: held.
     std::vector<char> sends(visited.size());
+    // A change under `send` still goes out where it is a large share of
+    // what the element sends (a dark room lit through a door), down to `hold`.
+    const auto level = [&](double change, double sending, double area) {
+        const double above = std::max(threshold.hold * area, std::min(threshold.send * area, threshold.share * sending));
+        return change > above ? 2 : change > threshold.hold * area ? 1 : 0;
+    };
     tbb::parallel_for(std::size_t(0), visited.size(), [&](std::size_t i) {
         const ElementId id = visited[i];
         const HElement& el = h_[id];
         if (el.outLinks.empty()) return;
         if (el.isSurface()) {
-            sends[i] = std::abs(luminance(el.radiosity - el.gathered)) > threshold;
+            sends[i] = char(level(std::abs(luminance(el.radiosity - el.gathered)), std::abs(luminance(el.radiosity)), 1.0));
             return;
         }
         // A cluster sends by facet: any facet's radiosity that moved.
         const ClusterShape& shape = h_.shape(id);
-        for (int k = 0; k < shape.facetCount() && !sends[i]; ++k)
-            sends[i] = shape.facets[k].area > 0.0 &&
-                       std::abs(luminance(shape.power[k] - shape.gathered[k])) > threshold * shape.facets[k].area;
+        for (int k = 0; k < shape.facetCount() && sends[i] < 2; ++k)
+            if (shape.facets[k].area > 0.0)
+                sends[i] = std::max(sends[i], char(level(std::abs(luminance(shape.power[k] - shape.gathered[k])),
+                                                         std::abs(luminance(shape.power[k])), shape.facets[k].area)));
     });
+    for (std::size_t i = 0; i < visited.size(); ++i)
+        if (sends[i] == 1) held.push_back(visited[i]);
     std::vector<ElementId> sources;
     std::vector<std::size_t> first;  // per source: where its transfers start
     std::size_t count = 0;
     glm::dvec3 sent(0.0);  // the change sent, per channel: radiosity times area, or facet power
     for (std::size_t i = 0; i < visited.size(); ++i) {
-        if (!sends[i]) continue;
+        if (sends[i] != 2) continue;
         sources.push_back(visited[i]);
         first.push_back(count);
         const HElement& el = h_[visited[i]];

@@ -80,6 +80,11 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const 
     std::vector<ElementId> visited = pushPull(stats, true);
     recordOverlay(visited, false);
     touched_.insert(touched_.end(), visited.begin(), visited.end());  // with what a deadline left
+    moving_ = true;
+    const struct Reset {
+        bool& flag;
+        ~Reset() { flag = false; }
+    } reset{moving_};
     bounce(std::move(visited), settings, stats);
     // 4. Refinement follows the light: links from elements whose oracle
     //    stepped are judged again, with what is left of the budget.

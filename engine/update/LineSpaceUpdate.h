@@ -261,8 +261,13 @@ private:
     // `visited` and of their links; marks them gathered. With a series (all
     // of the bounce's senders send), the change is sent ahead once it falls
     // steadily. False if none moved.
-    bool collectTransfers(const std::vector<ElementId>& visited, double threshold, std::vector<Transfer>& transfers,
-                          BounceSeries* series = nullptr);
+    // Those that moved by more than `hold` only are appended to `held`.
+    struct Thresholds {
+        double send, hold;  // changes of radiosity
+        double share;       // of the radiosity sent: a change above it is sent down to `hold`
+    };
+    bool collectTransfers(const std::vector<ElementId>& visited, Thresholds threshold,
+                          std::vector<Transfer>& transfers, BounceSeries* series, std::vector<ElementId>& held);
 
     Hierarchy& h_;
     LinkStore& links_;
@@ -319,6 +324,9 @@ private:
     // and its first bounce whatever the clock says, so that idle time
     // converges even on a deadline shorter than they take.
     bool idle_ = false;
+    // A move's frame (run): its bounces send only the changes above
+    // UpdateSettings::moveBounceThreshold.
+    bool moving_ = false;
     // Elements whose change of radiosity a deadline kept from being sent
     // (bounced): the next bounce, in a later frame or idle time, sends it.
     std::vector<ElementId> unsent_;

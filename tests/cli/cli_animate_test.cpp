@@ -186,12 +186,13 @@ TEST(CliSweep, WritesTheTradeTablesAndPlot) {
     const json trade = test::readJson(out + "/trade.json");
     EXPECT_EQ(jsonAt(trade, "/frames"), 2);
     EXPECT_GT(jsonAt(trade, "/median_full_solve_seconds"), 0.0);
-    // The live estimate: nothing waits without a budget; budget 0 leaves
-    // stale links, and the estimate ranks those frames as worse.
+    // The live estimate: without a budget only the changes a move's bounces
+    // hold back wait (UpdateSettings::moveBounceThreshold); budget 0 leaves
+    // stale links, and the estimate ranks those frames as far worse.
     const json first = jsonAt(trade, "/runs/0/median_estimated_error"), second = jsonAt(trade, "/runs/1/median_estimated_error");
     ASSERT_TRUE(first.is_number() && second.is_number());
-    EXPECT_EQ(second.get<double>(), 0.0);
-    EXPECT_GT(first.get<double>(), 0.0);
+    EXPECT_LT(second.get<double>(), 1e-3);
+    EXPECT_GT(first.get<double>(), 20.0 * second.get<double>());
     EXPECT_TRUE(jsonAt(trade, "/estimate_rank_correlation").is_number());
     // One run per budget, then one per target frame rate, in the order asked.
     const json runs = jsonAt(trade, "/runs");

@@ -41,5 +41,32 @@ TEST(FurtherBounces, ExtrapolatedBouncesReachTheFurnaceAnswerInFewerBounces) {
     EXPECT_LT(bounces[1], bounces[0] / 3) << bounces[1] << " against " << bounces[0];
 }
 
+// A move's bounces send only the changes above
+// UpdateSettings::moveBounceThreshold: the smaller ones wait, unsent
+// (counted, and in the estimated error), and idle time sends them down to
+// bounceThreshold, where the solution is the one a move that sends every
+// change above bounceThreshold gives.
+TEST(FurtherBounces, AMoveHoldsBackSmallChangesThatIdleTimeSends) {
+    Engine held(test::roomWithBlock(), test::coarse());
+    Engine sent(test::roomWithBlock(), test::coarse());
+    ASSERT_TRUE(held.solve().converged);
+    ASSERT_TRUE(sent.solve().converged);
+    UpdateSettings all;
+    all.moveBounceThreshold = all.bounceThreshold;
+    const glm::dmat4 move = test::translation(glm::dvec3(0.3, 0.0, 0.1));
+    const FrameStats h = held.moveDynamicObject(move);
+    const FrameStats s = sent.moveDynamicObject(move, all);
+    EXPECT_EQ(s.unsent, 0u);
+    EXPECT_GT(h.unsent, 0u);
+    EXPECT_GT(h.estimatedError, 0.0);
+    EXPECT_LT(h.bounces, s.bounces);
+    const double before = compareSamples(held.samples(), sent.samples()).rms;
+    EXPECT_GT(before, 0.0);
+    const FrameStats idle = held.refinePending();
+    EXPECT_EQ(idle.unsent, 0u);
+    EXPECT_GT(idle.bounces, 0);
+    EXPECT_LT(compareSamples(held.samples(), sent.samples()).rms, 1e-4) << "before idle: " << before;
+}
+
 }  // namespace
 }  // namespace rad
