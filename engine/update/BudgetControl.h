@@ -24,12 +24,13 @@ public:
     // overhead + cost * updates. Before any frame: (0, the first guess).
     std::pair<double, double> model() const;
     // How far above the model frames come: the 80th percentile of the
-    // frames' time less the model's (0 before any frame).
+    // frames' time less the model's (0 before six frames).
     double spread() const;
 
 private:
     std::optional<std::pair<double, double>> fit() const;  // (overhead, cost), none before a frame
     static constexpr std::size_t kWindow = 32;
+    static constexpr std::size_t kSpreadFrames = 6;
     double initialCost_;
     std::deque<std::pair<double, double>> frames_;  // (updates, seconds)
 };

@@ -39,6 +39,20 @@ TEST(BudgetControl, BudgetKeepsFourFramesInFiveWithinTheTarget) {
     EXPECT_NEAR(twoSlow.spread(), 0.005, 1e-12);
 }
 
+// The first frame of a drag is slower than the rest (its traversal finds
+// the lists cold): it must not hold the budget at 0 while the frames that
+// follow leave a third of the target unused.
+TEST(BudgetControl, ASlowFirstFrameDoesNotHoldTheBudgetAtZero) {
+    BudgetControl control(1e-6);
+    control.record(0, 0.037);
+    control.record(0, 0.020);
+    EXPECT_NEAR(double(control.budgetFor(0.033)), 13000.0, 1.0);
+    for (int i = 0; i < 4; ++i) control.record(0, 0.020);
+    EXPECT_NEAR(double(control.budgetFor(0.033)), 13000.0, 1.0) << "one slow frame in six";
+    control.record(0, 0.037);
+    EXPECT_EQ(control.budgetFor(0.033), 0u) << "two slow frames in seven";
+}
+
 TEST(BudgetControl, IgnoresFramesThatAreNotTimes) {
     BudgetControl control(1e-6);
     control.record(100, -1.0);
