@@ -707,14 +707,20 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         if (!light && (!object || s.hierarchy.objectCluster(*object) == kNone))
             throw std::invalid_argument("no object '" + name + "' with polygons and no light of that name in " +
                                         s.scene.sourcePath);
-        const glm::dmat3 r(worldFromLocal);
+        // The motion from where it stands must be rigid; its node's own
+        // transform may scale or mirror it (as tools write them).
+        const glm::dmat4& current =
+            light ? s.scene.lights[*light].worldFromLocal : s.scene.objects[*object].worldFromLocal;
+        const glm::dmat4 motion = worldFromLocal * glm::inverse(current);
+        const glm::dmat3 r(motion);
         const glm::dmat3 rtr = glm::transpose(r) * r;
-        bool rigid = std::abs(glm::determinant(r) - 1.0) < 1e-6 && worldFromLocal[0][3] == 0.0 &&
-                     worldFromLocal[1][3] == 0.0 && worldFromLocal[2][3] == 0.0 && worldFromLocal[3][3] == 1.0;
+        bool rigid = std::abs(glm::determinant(r) - 1.0) < 1e-6 && std::abs(motion[0][3]) < 1e-9 &&
+                     std::abs(motion[1][3]) < 1e-9 && std::abs(motion[2][3]) < 1e-9 &&
+                     std::abs(motion[3][3] - 1.0) < 1e-9;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) rigid = rigid && std::abs(rtr[i][j] - (i == j ? 1.0 : 0.0)) < 1e-6;
         for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]);
+            for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]) && std::isfinite(motion[i][j]);
         if (!rigid)
             throw std::invalid_argument("the transform of '" + name + "' is not a finite rigid motion (rotation and translation)");
         if (light)

@@ -264,6 +264,26 @@ TEST(LineSpaceUpdate, RejectsNonRigidTransforms) {
     EXPECT_TRUE(allFinite(engine.samples()));
 }
 
+// Tools write nodes that scale and mirror (a Blender object at scale -1, 1,
+// 1.3): what must be rigid is the motion from where the object stands, not
+// its node's transform. Such an object moves, its frame matches a full
+// solve, and a motion that scales it is still refused.
+TEST(LineSpaceUpdate, AnObjectWhoseNodeScalesAndMirrorsMovesRigidly) {
+    Scene scene = roomWithBlock();
+    const std::optional<std::uint32_t> block = scene.findObject("block");
+    ASSERT_TRUE(block);
+    const glm::dmat4 node = translation(V(0.1, 0.0, 0.0)) * glm::scale(glm::dmat4(1.0), V(-1.0, 1.0, 1.3));
+    scene.objects[*block].worldFromLocal = node;  // its polygons stay in world space, as imported
+    Engine engine(std::move(scene), coarse());
+    ASSERT_TRUE(engine.solve().converged);
+    const glm::dmat4 moved = translation(V(0.3, 0.0, 0.1)) * node;
+    ASSERT_NO_THROW(engine.moveObjects({{"block", moved}}));
+    EXPECT_EQ(engine.scene().objects[*block].worldFromLocal, moved);
+    EXPECT_LT(compareWithFullSolve(engine, coarse()).rms, 0.01);
+    EXPECT_THROW(engine.moveObjects({{"block", glm::scale(glm::dmat4(1.0), V(1.5)) * moved}}), std::invalid_argument);
+    EXPECT_EQ(engine.scene().objects[*block].worldFromLocal, moved);
+}
+
 TEST(LineSpaceUpdate, ChoosingAnotherDynamicObject) {
     const auto start = Clock::now();
     const EngineSettings settings;
