@@ -144,6 +144,7 @@ int animate(const AnimateSettings& settings) {
     if (!std::filesystem::exists(s.scene)) throw std::runtime_error(s.scene + ": no such file");
     ImportNotes notes;
     const Scene scene = loadGltf(s.scene, &notes);
+    printImportNotes(notes);
     printWarnings(importWarnings(notes));
     if (s.motion.script) checkScriptObjects(Script{s.motion.frames, s.motion.moves, s.motion.edits}, *s.motion.script, scene);
 

@@ -35,8 +35,8 @@ double seconds(std::chrono::steady_clock::time_point a, std::chrono::steady_cloc
 }
 
 // `warnings`: the import's, then the solve's.
-Report makeReport(const SolveSettings& s, const Engine& engine, const std::vector<Warning>& warnings,
-                  double loadSeconds, double totalSeconds) {
+Report makeReport(const SolveSettings& s, const Engine& engine, const ImportNotes& notes,
+                  const std::vector<Warning>& warnings, double loadSeconds, double totalSeconds) {
     const SolveStats& st = engine.stats();
     Report objects = Report::array();
     for (const ObjectRadiosity& o : engine.objectRadiosity())
@@ -58,6 +58,7 @@ Report makeReport(const SolveSettings& s, const Engine& engine, const std::vecto
         {"stopped_by", st.stoppedBy.empty() ? Report(nullptr) : Report(st.stoppedBy)},
         {"unrefined_power_share", st.unrefinedPowerShare},
         {"warnings", warningsReport(warnings)},
+        {"import_notes", notes.lines},
         {"seconds",
          {{"load", loadSeconds},
           {"hierarchy", st.hierarchySeconds},
@@ -87,6 +88,7 @@ int solve(const SolveSettings& s) {
     ImportNotes notes;
     Scene scene = loadGltf(s.scene, &notes);
     std::vector<Warning> warnings = importWarnings(notes);
+    printImportNotes(notes);
     printWarnings(warnings);
     const auto loaded = std::chrono::steady_clock::now();
 
@@ -106,7 +108,7 @@ int solve(const SolveSettings& s) {
         std::fprintf(stderr, "solve: %s\n", st.message.c_str());
 
     if (s.report) {
-        writeReport(*s.report, makeReport(s, engine, warnings, seconds(start, loaded), seconds(start, solved)));
+        writeReport(*s.report, makeReport(s, engine, notes, warnings, seconds(start, loaded), seconds(start, solved)));
         std::printf("wrote %s\n", s.report->c_str());
     }
     if (!s.image.path.empty() || s.exportPath) {

@@ -99,6 +99,7 @@ int sweep(const SweepSettings& settingsGiven) {
     if (!std::filesystem::exists(scenePath)) throw std::runtime_error(scenePath + ": no such file");
     ImportNotes notes;
     const Scene scene = loadGltf(scenePath, &notes);
+    printImportNotes(notes);
     printWarnings(importWarnings(notes));
     if (request.script) checkScriptObjects(Script{request.frames, request.moves, request.edits}, *request.script, scene);
     std::filesystem::create_directories(out);

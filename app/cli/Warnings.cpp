@@ -29,6 +29,14 @@ std::vector<Warning> importWarnings(const ImportNotes& notes) {
     return out;
 }
 
+void printImportNotes(const ImportNotes& notes) {
+    constexpr std::size_t kShown = 10;
+    for (std::size_t i = 0; i < notes.lines.size() && i < kShown; ++i)
+        std::fprintf(stderr, "note: %s\n", notes.lines[i].c_str());
+    if (notes.lines.size() > kShown)
+        std::fprintf(stderr, "note: %zu more import notes (the solve report lists them all)\n", notes.lines.size() - kShown);
+}
+
 void printWarnings(const std::vector<Warning>& warnings) {
     // A kind that fires at many objects (the energy guard in a furnished
     // scene) prints its largest case and a count; the report lists them all.

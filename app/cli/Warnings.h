@@ -16,6 +16,11 @@ namespace rad::cli {
 // from; amount: how many polygons were dropped).
 std::vector<Warning> importWarnings(const ImportNotes& notes);
 
+// "note: <line>" on stderr for what the import ignored, skipped or dropped
+// (ImportNotes::lines: an animation, a LINES primitive, a normal texture,
+// degenerate triangles), the first ten and then how many more.
+void printImportNotes(const ImportNotes& notes);
+
 // "warning: <message>" on stderr, one line per warning; a kind with more
 // than three prints only its largest (by amount) and how many more there are.
 void printWarnings(const std::vector<Warning>& warnings);

@@ -363,11 +363,17 @@ class Importer {
         if (!model_.animations.empty())
             note(std::to_string(model_.animations.size()) + " animation(s) ignored");
         if (!model_.skins.empty()) note(std::to_string(model_.skins.size()) + " skin(s) ignored");
-        for (const std::string& ext : model_.extensionsUsed) {
-            if (ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_unlit" &&
-                ext != "KHR_lights_punctual")
-                note("extension " + ext + " ignored");
-        }
+        const auto known = [](const std::string& ext) {
+            return ext == "KHR_materials_emissive_strength" || ext == "KHR_materials_unlit" ||
+                   ext == "KHR_lights_punctual";
+        };
+        // A required extension changes what the file's data means (Draco- or
+        // meshopt-compressed buffers, quantized positions): read without it,
+        // the scene would be wrong.
+        for (const std::string& ext : model_.extensionsRequired)
+            if (!known(ext)) fail("file", "requires extension " + ext + ", which is not supported");
+        for (const std::string& ext : model_.extensionsUsed)
+            if (!known(ext)) note("extension " + ext + " ignored");
     }
 
     // Depth-first, pre-order: that order decides which camera is "first".
@@ -772,11 +778,34 @@ class Importer {
         return out;
     }
 
+    // A strip's or fan's vertices as a list of triangles, in glTF's order
+    // and winding (glTF 2.0, 3.7.2.1: strip triangle i is {i, i + 1 + i % 2,
+    // i + 2 - i % 2}, fan triangle i is {i + 1, i + 2, 0}).
+    std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& v, const std::string& item) {
+        if (v.size() < 3) fail(item, std::to_string(v.size()) + " vertices do not make a triangle");
+        std::vector<std::uint32_t> out;
+        out.reserve(3 * (v.size() - 2));
+        for (std::size_t i = 0; i + 2 < v.size(); ++i) {
+            if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+                out.insert(out.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+            else
+                out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+        }
+        return out;
+    }
+
     void addPrimitive(const tinygltf::Primitive& prim, const std::string& item,
                       const glm::dmat4& world, bool mirrored, std::vector<WorldTriangle>& out) {
-        if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-            fail(item, std::string("mode ") + modeName(prim.mode) + " (" +
-                           std::to_string(prim.mode) + ") is not supported, only TRIANGLES");
+        const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+        if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+            mode == TINYGLTF_MODE_LINE_STRIP) {
+            // Points and lines have no area to light (a CAD export's edges).
+            note(item + ": mode " + modeName(mode) + " has no area, skipped");
+            return;
+        }
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN)
+            fail(item, std::string("mode ") + modeName(mode) + " (" + std::to_string(mode) + ") is not supported");
         if (!prim.targets.empty()) note(item + ": morph targets ignored");
         std::uint32_t material = materialIndex(prim.material, item);
         const std::vector<glm::dvec3> local = readPositions(prim, item);
@@ -797,6 +826,7 @@ class Importer {
             for (std::size_t i = 0; i < indices.size(); ++i)
                 indices[i] = static_cast<std::uint32_t>(i);
         }
+        if (mode != TINYGLTF_MODE_TRIANGLES) indices = triangleList(mode, indices, item);
         if (indices.size() % 3 != 0)
             fail(item, std::to_string(indices.size()) + " vertices do not make whole triangles");
 
@@ -983,19 +1013,32 @@ class Importer {
         // index until the objects without polygons are left out.
         std::vector<std::vector<Polygon>> polygons(pending_.size());
         std::size_t dropped = 0;
+        std::string where;  // the first objects with degenerate triangles
+        int listed = 0;
         for (std::size_t i = 0; i < pending_.size(); ++i) {
             std::vector<WorldTriangle> kept;
+            std::size_t here = 0;
             for (const WorldTriangle& t : pending_[i].triangles) {
                 if (triangleArea(t) <= minArea) {
-                    ++dropped;
+                    ++here;
                 } else {
                     kept.push_back(t);
                 }
             }
             appendPolygons(kept, static_cast<std::uint32_t>(i), polygons[i]);
+            if (here > 0 && ++listed <= 3)
+                where += (where.empty() ? "" : ", ") + pending_[i].item + " " + std::to_string(here);
+            else if (here > 0 && listed == 4)
+                where += ", ...";
+            dropped += here;
         }
         notes_.degenerateTriangles += dropped;
-        if (dropped > 0) note(std::to_string(dropped) + " degenerate triangle(s) dropped");
+        // The threshold follows the scene's size: an object far from the
+        // others (a stray export) makes ordinary triangles degenerate.
+        std::ostringstream size;
+        size << "area under " << minArea << " m^2, 1e-12 of the squared diagonal of the scene's bounds, "
+             << std::sqrt(diagonal2) << " m";
+        if (dropped > 0) note(std::to_string(dropped) + " degenerate triangle(s) dropped (" + size.str() + "; " + where + ")");
         if (notes_.mergedRegionTriangles > 0)
             note(std::to_string(notes_.mergedRegionTriangles) +
                  " triangle(s) merged with their coplanar neighbours into convex polygons");
@@ -1025,7 +1068,10 @@ class Importer {
             }
             scene.objects.push_back(std::move(object));
         }
-        if (scene.polygons.empty()) fail("scene", "contains no polygons");
+        if (scene.polygons.empty())
+            fail("scene", dropped > 0 ? "contains no polygons: all " + std::to_string(dropped) +
+                                            " triangles are degenerate (" + size.str() + "; is an object far from the others?)"
+                                      : "contains no polygons");
         return scene;
     }
 

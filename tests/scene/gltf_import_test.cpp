@@ -889,22 +889,65 @@ TEST(GltfImportErrors, IndexOutOfRange) {
     expectOneLineError(importError(file), file, "mesh 'Bad' primitive 0");
 }
 
-TEST(GltfImportErrors, NonTriangleMode) {
+// Strips and fans are triangles written another way (glTF 2.0, 3.7.2.1): the
+// rectangle as a strip and as a fan imports as the one quad, facing +Z.
+TEST(GltfImport, StripsAndFansImportAsTheirTriangles) {
+    TempDir dir;
+    for (const auto& [mode, order] : {std::pair{5, std::vector<std::uint32_t>{0, 1, 3, 2}},
+                                      std::pair{6, std::vector<std::uint32_t>{0, 1, 2, 3}}}) {
+        GltfBuilder g;
+        g.addMesh("Rect", g.addPositions(kRect), g.addIndices(order), g.addGrey("Grey"), mode);
+        g.addNode("\"name\":\"Rect\",\"mesh\":0");
+        const Scene s = loadGltf(path(g.writeEmbedded(dir, "mode" + std::to_string(mode) + ".gltf")));
+        ASSERT_EQ(s.polygons.size(), 1u) << "mode " << mode;
+        const Polygon& p = s.polygons[0];
+        ASSERT_EQ(p.vertexCount, 4) << "mode " << mode;
+        for (const glm::dvec3& corner : {glm::dvec3(0, 0, 0), glm::dvec3(2, 0, 0), glm::dvec3(2, 3, 0), glm::dvec3(0, 3, 0)})
+            EXPECT_TRUE(hasVertex(s, corner)) << "mode " << mode;
+        EXPECT_GT(glm::cross(p.vertices[1] - p.vertices[0], p.vertices[2] - p.vertices[0]).z, 0.0) << "mode " << mode;
+    }
+}
+
+// Points and lines have no area (a CAD export's edges): skipped with a note,
+// and the triangles beside them import.
+TEST(GltfImport, PointsAndLinesAreSkippedWithANote) {
     TempDir dir;
     GltfBuilder g;
-    g.addMesh("Chair", g.addPositions(kRect), g.addIndices({0, 1, 1, 2}), g.addGrey("Grey"), 1);
+    const int grey = g.addGrey("Grey");
+    g.addMesh("Edges", g.addPositions(kRect), g.addIndices({0, 1, 1, 2}), grey, 1);
+    g.addMesh("Rect", g.addPositions(kRect), g.addIndices(kRectIndices), grey);
+    g.addNode("\"name\":\"Edges\",\"mesh\":0");
+    g.addNode("\"name\":\"Rect\",\"mesh\":1");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    EXPECT_EQ(s.polygons.size(), 1u);
+    ASSERT_EQ(s.objects.size(), 1u);
+    EXPECT_EQ(s.objects[0].name, "Rect");
+    EXPECT_NE(noteWith(notes, "LINES"), "") << "no note of the skipped lines";
+}
+
+TEST(GltfImportErrors, UnknownPrimitiveMode) {
+    TempDir dir;
+    GltfBuilder g;
+    g.addMesh("Chair", g.addPositions(kRect), g.addIndices({0, 1, 2}), g.addGrey("Grey"), 7);
     g.addNode("\"name\":\"Chair\",\"mesh\":0");
     const fs::path file = g.writeEmbedded(dir);
     const std::string message = importError(file);
     expectOneLineError(message, file, "mesh 'Chair' primitive 0");
-    EXPECT_NE(message.find("LINES (1)"), std::string::npos) << message;
-    EXPECT_NE(message.find("TRIANGLES"), std::string::npos) << message;
+    EXPECT_NE(message.find("(7) is not supported"), std::string::npos) << message;
+}
 
-    GltfBuilder strip;
-    strip.addMesh("Strip", strip.addPositions(kRect), -1, strip.addGrey("Grey"), 5);
-    strip.addNode("\"name\":\"Strip\",\"mesh\":0");
-    const fs::path stripFile = strip.writeEmbedded(dir, "strip.gltf");
-    expectOneLineError(importError(stripFile), stripFile, "TRIANGLE_STRIP (5)");
+// A required extension changes what the data means (compressed buffers):
+// a scene read without it would be wrong.
+TEST(GltfImportErrors, UnsupportedRequiredExtension) {
+    TempDir dir;
+    GltfBuilder g;
+    g.extraTopLevel =
+        "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],";
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    expectOneLineError(importError(file), file, "requires extension KHR_draco_mesh_compression");
 }
 
 TEST(GltfImportErrors, NanPosition) {
@@ -1035,6 +1078,18 @@ TEST(GltfImportErrors, EmptyScene) {
     d.addNode("\"name\":\"Flat\",\"mesh\":0");
     const fs::path flat = d.writeEmbedded(dir, "flat.gltf");
     expectOneLineError(importError(flat), flat, "contains no polygons");
+    EXPECT_NE(importError(flat).find("degenerate"), std::string::npos) << importError(flat);
+
+    // An object 1e7 m from the others makes ordinary triangles degenerate
+    // at the scene's size: the error says so, not only "no polygons".
+    GltfBuilder far;
+    addRectMesh(far, "Rect", far.addGrey("Grey"));
+    far.addNode("\"name\":\"Here\",\"mesh\":0");
+    far.addNode("\"name\":\"Stray\",\"mesh\":0,\"translation\":[1e7,0,0]");
+    const fs::path strayFile = far.writeEmbedded(dir, "stray.gltf");
+    const std::string stray = importError(strayFile);
+    expectOneLineError(stray, strayFile, "degenerate");
+    EXPECT_NE(stray.find("far from the others"), std::string::npos) << stray;
 }
 
 TEST(GltfImportErrors, UnknownExtension) {
