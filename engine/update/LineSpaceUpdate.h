@@ -75,7 +75,9 @@ public:
     // every active link judged again (refined within the budget, the rest
     // pending) and the p-links no longer needed reinstated, as a solve's
     // refinement would leave them; then the light of what changed, bounced.
-    // Adds to `stats` and finishes the frame that propagate began.
+    // Adds to `stats` and finishes the frame that propagate began. On a
+    // deadline, when judging is not expected to fit (at what it last took),
+    // it waits for idle time (refinePending), counted as one pending link.
     void judgeAgain(const UpdateSettings& settings, FrameStats& stats);
     // Refines, within the budget, the links a budget left coarse, with no
     // motion (what an idle viewer does between moves).
@@ -278,6 +280,12 @@ private:
     // Per frame.
     std::vector<ObjectMotion> motions_;
     std::chrono::steady_clock::time_point editStart_;  // when propagate began the frame judgeAgain ends
+    // Judging every active link again after an edit: refines within the
+    // budget what the criterion asks for and reinstates what it no longer
+    // does. Whether a deadline left it for idle time, and what it last took.
+    void judgeEveryLink(FrameStats& stats, std::size_t budget);
+    bool judgePending_ = false;
+    double judgeSeconds_ = 0.0;
     // Whether an element lies in, or holds, a moving object's cluster.
     bool movedEnd(ElementId e) const;
     std::vector<Aabb> obstacles_;
