@@ -110,6 +110,27 @@ std::vector<Warning> guardWarnings(const Scene& scene, const Solver& solver, dou
     return out;
 }
 
+std::vector<Warning> backFaceWarnings(const Scene& scene, const EnergyBalance& energy, double threshold) {
+    if (!(energy.emitted > 0.0) || !(energy.backFaces > threshold * energy.emitted)) return {};
+    std::vector<std::pair<double, std::uint32_t>> by;
+    for (std::uint32_t o = 0; o < energy.backFacesByObject.size() && o < scene.objects.size(); ++o)
+        if (energy.backFacesByObject[o] > 0.0) by.emplace_back(energy.backFacesByObject[o], o);
+    std::sort(by.begin(), by.end(), std::greater<>());
+    const double share = energy.backFaces / energy.emitted;
+    std::ostringstream m;
+    m << std::lround(100.0 * share) << "% of the emitted light meets the back of one-sided polygons";
+    std::vector<std::string> objects;
+    for (const auto& [power, o] : by) {
+        if (objects.size() == 3 || power < 0.1 * energy.backFaces) break;
+        m << (objects.empty() ? ", " : " and ") << std::lround(100.0 * power / energy.backFaces) << "% of it at '"
+          << scene.objects[o].name << "'";
+        objects.push_back(scene.objects[o].name);
+    }
+    m << ": " << (objects.size() == 1 ? "are its normals" : "are their normals")
+      << " flipped? (a doubleSided material lights both sides)";
+    return {{"back_faces", m.str(), objects, share}};
+}
+
 std::size_t clearNonFinite(Hierarchy& h) {
     std::size_t cleared = 0;
     const auto clear = [&](glm::dvec3& v) {

@@ -21,6 +21,12 @@ std::string diagnoseFailure(const Scene& scene, const Hierarchy& hierarchy, cons
 // more than `threshold` (form factors summing above 1 + threshold).
 std::vector<Warning> guardWarnings(const Scene& scene, const Solver& solver, double threshold);
 
+// A warning when more than `threshold` of the emitted light meets the backs
+// of one-sided polygons (EnergyBalance::backFaces), naming the objects that
+// take most of it: a room whose normals point out stays dark and the solve
+// converges. None otherwise.
+std::vector<Warning> backFaceWarnings(const Scene& scene, const EnergyBalance& energy, double threshold);
+
 // Sets every non-finite radiosity and irradiance to zero, so that no NaN
 // reaches a report, an image or an export. Returns how many were.
 std::size_t clearNonFinite(Hierarchy& hierarchy);

@@ -1,5 +1,6 @@
 #include "solve/EnergyAudit.h"
 
+#include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -51,6 +52,11 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
         if (std::isfinite(leaving[i])) total += leaving[i];
     }
     std::vector<double> escaped(leaves.size(), 0.0), back(leaves.size(), 0.0);
+    // Where the light meets backs, by object (summed per thread).
+    const auto objectOf = [&](std::uint32_t polygon) {
+        return polygon < scene.polygons.size() ? scene.polygons[polygon].object : std::uint32_t(scene.objects.size());
+    };
+    tbb::combinable<std::vector<double>> backBy([&] { return std::vector<double>(scene.objects.size() + 1, 0.0); });
     const double offset = 10.0 * rays.coincidenceTolerance();
     tbb::parallel_for(std::size_t(0), leaves.size(), [&](std::size_t i) {
         if (!(leaving[i] > 0.0) || !std::isfinite(leaving[i])) return;
@@ -65,6 +71,7 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
         const glm::dvec3 b = glm::cross(n, t);
         const auto& v = leaf.patch.v;
         std::uint32_t missed = 0, backs = 0;
+        std::vector<double>& by = backBy.local();
         for (std::uint32_t k = 0; k < count; ++k) {
             // A point on the leaf, kept off its edges (a ray from a point on
             // an edge shared with another polygon starts in that polygon's
@@ -83,10 +90,12 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
                 r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(1.0 - q.x) * n;
             const auto hit =
                 rays.intersect(point + offset * n, dir, std::numeric_limits<double>::infinity());
-            if (!hit)
+            if (!hit) {
                 ++missed;
-            else if (!hit->front)
+            } else if (!hit->front) {
                 ++backs;
+                by[objectOf(hit->polygon)] += leaving[i] / count;
+            }
         }
         escaped[i] = leaving[i] * missed / count;
         back[i] = leaving[i] * backs / count;
@@ -103,6 +112,7 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
         if (!(power > 0.0)) continue;
         constexpr std::uint32_t kLightRays = 16384;
         std::vector<double> weight(kLightRays, 0.0), missed(kLightRays, 0.0), backs(kLightRays, 0.0);
+        std::vector<std::uint32_t> backObject(kLightRays, 0);
         tbb::parallel_for(std::uint32_t(0), kLightRays, [&](std::uint32_t k) {
             const glm::dvec2 q = hammersley(k, kLightRays);
             const double z = 1.0 - 2.0 * q.x, s = std::sqrt(std::max(0.0, 1.0 - z * z));
@@ -113,8 +123,10 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
             const auto hit = rays.intersect(light.position, dir, std::numeric_limits<double>::infinity());
             if (!hit)
                 missed[k] = weight[k];
-            else if (!hit->front)
+            else if (!hit->front) {
                 backs[k] = weight[k];
+                backObject[k] = objectOf(hit->polygon);
+            }
         });
         double total = 0.0, miss = 0.0, back = 0.0;
         for (std::uint32_t k = 0; k < kLightRays; ++k) {
@@ -125,8 +137,15 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
         if (total > 0.0) {
             energy.escaped += power * miss / total;
             energy.backFaces += power * back / total;
+            std::vector<double>& by = backBy.local();
+            for (std::uint32_t k = 0; k < kLightRays; ++k)
+                if (backs[k] > 0.0) by[backObject[k]] += power * backs[k] / total;
         }
     }
+    energy.backFacesByObject.assign(scene.objects.size(), 0.0);
+    backBy.combine_each([&](const std::vector<double>& by) {
+        for (std::size_t o = 0; o < scene.objects.size(); ++o) energy.backFacesByObject[o] += by[o];
+    });
     energy.lost = energy.emitted - energy.absorbed - energy.escaped - energy.backFaces;
     energy.created = std::max(0.0, energy.absorbed - energy.emitted);
 }

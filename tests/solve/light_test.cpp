@@ -178,5 +178,35 @@ TEST(Light, OpeningTheDoorLightsTheDarkRoomAsAFullSolve) {
     }
 }
 
+// A room whose faces point out (a tool's export with its normals flipped)
+// stays dark: the light meets the backs of its walls, and the solve
+// converges all the same. It says so, in a back_faces warning naming the
+// room; the same room facing in gets none.
+TEST(Light, AnInsideOutRoomIsNamedInABackFaceWarning) {
+    for (bool inward : {false, true}) {
+        Scene s;
+        s.sourcePath = "inside-out-room";
+        const auto white = test::addMaterial(s, V(0.7), V(0.0), "white");
+        const auto light = test::addMaterial(s, V(0.0), V(10.0), "light");
+        test::addQuadObject(s, "room", white, test::boxFaces(V(0.0), V(4.0, 3.0, 4.0), inward));
+        test::addQuadObject(s, "light", light,
+                            {{V(1.5, 2.999, 1.5), V(2.5, 2.999, 1.5), V(2.5, 2.999, 2.5), V(1.5, 2.999, 2.5)}});
+        Engine engine(std::move(s), test::coarse());
+        const SolveStats& st = engine.solve();
+        ASSERT_TRUE(st.converged) << st.message;
+        const Warning* back = nullptr;
+        for (const Warning& w : st.warnings)
+            if (w.kind == "back_faces") back = &w;
+        if (inward) {
+            EXPECT_EQ(back, nullptr) << back->message;
+            continue;
+        }
+        ASSERT_NE(back, nullptr) << "no back_faces warning for a room facing out";
+        EXPECT_EQ(back->objects, std::vector<std::string>{"room"}) << back->message;
+        EXPECT_GT(back->amount, 0.95) << back->message;
+        EXPECT_NE(back->message.find("'room'"), std::string::npos) << back->message;
+    }
+}
+
 }  // namespace
 }  // namespace rad

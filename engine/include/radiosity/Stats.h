@@ -25,6 +25,9 @@ struct EnergyBalance {
     // meets nothing, and that meets the back of a polygon.
     double escaped = 0.0;
     double backFaces = 0.0;
+    // backFaces by the object whose polygons' backs the light meets (by
+    // index in Scene::objects): a room whose normals point out shows here.
+    std::vector<double> backFacesByObject;
     // emitted - absorbed - escaped - backFaces: light the solution lost
     // (positive) or made (negative), and max(0, absorbed - emitted).
     double lost = 0.0;
