@@ -111,18 +111,24 @@ std::vector<Warning> guardWarnings(const Scene& scene, const Solver& solver, dou
 }
 
 std::vector<Warning> backFaceWarnings(const Scene& scene, const EnergyBalance& energy, double threshold) {
-    if (!(energy.emitted > 0.0) || !(energy.backFaces > threshold * energy.emitted)) return {};
+    // What the objects' backs take (not light that goes into the surface a
+    // punctual light sits on).
+    double onBacks = 0.0;
     std::vector<std::pair<double, std::uint32_t>> by;
     for (std::uint32_t o = 0; o < energy.backFacesByObject.size() && o < scene.objects.size(); ++o)
-        if (energy.backFacesByObject[o] > 0.0) by.emplace_back(energy.backFacesByObject[o], o);
+        if (energy.backFacesByObject[o] > 0.0) {
+            by.emplace_back(energy.backFacesByObject[o], o);
+            onBacks += energy.backFacesByObject[o];
+        }
+    if (!(energy.emitted > 0.0) || !(onBacks > threshold * energy.emitted)) return {};
     std::sort(by.begin(), by.end(), std::greater<>());
-    const double share = energy.backFaces / energy.emitted;
+    const double share = onBacks / energy.emitted;
     std::ostringstream m;
     m << std::lround(100.0 * share) << "% of the emitted light meets the back of one-sided polygons";
     std::vector<std::string> objects;
     for (const auto& [power, o] : by) {
-        if (objects.size() == 3 || power < 0.1 * energy.backFaces) break;
-        m << (objects.empty() ? ", " : " and ") << std::lround(100.0 * power / energy.backFaces) << "% of it at '"
+        if (objects.size() == 3 || power < 0.1 * onBacks) break;
+        m << (objects.empty() ? ", " : " and ") << std::lround(100.0 * power / onBacks) << "% of it at '"
           << scene.objects[o].name << "'";
         objects.push_back(scene.objects[o].name);
     }

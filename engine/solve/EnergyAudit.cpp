@@ -120,7 +120,19 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
             const glm::dvec3 dir(s * std::cos(phi), s * std::sin(phi), z);
             weight[k] = light.falloff(dir);
             if (!(weight[k] > 0.0)) return;
-            const auto hit = rays.intersect(light.position, dir, std::numeric_limits<double>::infinity());
+            auto hit = rays.intersect(light.position, dir, std::numeric_limits<double>::infinity());
+            // A light on a surface (a downlight in the ceiling's plane, a
+            // bulb on a wall) meets it at once: leaving through its front,
+            // the ray goes on; going into it, the light is lost there (in
+            // backFaces, but no object's normals are to blame for it).
+            if (hit && hit->t < offset) {
+                if (hit->front) {
+                    backs[k] = weight[k];
+                    backObject[k] = std::uint32_t(scene.objects.size());
+                    return;
+                }
+                hit = rays.intersect(light.position + offset * dir, dir, std::numeric_limits<double>::infinity());
+            }
             if (!hit)
                 missed[k] = weight[k];
             else if (!hit->front) {

@@ -208,5 +208,33 @@ TEST(Light, AnInsideOutRoomIsNamedInABackFaceWarning) {
     }
 }
 
+// A downlight in the ceiling's plane (a spot pointing down, as tools place
+// recessed lights) lights the room, and its light leaves through the
+// ceiling's front: the audit counted every ray as meeting the ceiling's
+// back at distance 0 (back_faces 101%, lost -99%) and would have warned. A
+// bulb on a wall loses the half that goes into the wall, and no object is
+// blamed for it.
+TEST(Light, ALightInASurfacesPlaneIsAuditedAsItShines) {
+    for (const bool onWall : {false, true}) {
+        Scene s = test::roomWithBlock();
+        for (Material& m : s.materials) m.emission = V(0.0);
+        PunctualLight light;
+        light.name = onWall ? "bulb" : "downlight";
+        light.type = onWall ? PunctualLight::Type::Point : PunctualLight::Type::Spot;
+        light.position = onWall ? V(0.0, 1.5, 2.0) : V(0.8, 3.0, 0.8);  // in the wall x = 0, the ceiling y = 3
+        light.direction = V(0.0, -1.0, 0.0);
+        light.intensity = V(5.0);
+        light.outerCone = 1.0;
+        s.lights.push_back(light);
+        Engine engine(std::move(s), test::coarse());
+        const SolveStats& st = engine.solve();
+        ASSERT_TRUE(st.converged) << st.message;
+        const EnergyBalance& e = st.energy;
+        EXPECT_LT(std::abs(e.lost), 0.03 * e.emitted) << light.name << ": lost " << e.lost / e.emitted;
+        EXPECT_NEAR(e.backFaces, onWall ? 0.5 * e.emitted : 0.0, 0.03 * e.emitted) << light.name;
+        for (const Warning& w : st.warnings) EXPECT_NE(w.kind, "back_faces") << light.name << ": " << w.message;
+    }
+}
+
 }  // namespace
 }  // namespace rad
