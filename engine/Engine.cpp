@@ -111,8 +111,7 @@ struct Engine::State {
     LightLinks lightLinks;
     BudgetControl budget{1e-5};
 
-    // The light links' threshold follows the refiner's (edits change its
-    // reference power).
+    // The light links' threshold: the refiner's.
     void setLightThreshold() {
         lightLinks.setThreshold(refiner.settings().epsilon * refiner.settings().referencePower);
     }
@@ -125,6 +124,11 @@ struct Engine::State {
     }
     SolveStats stats;
     bool solved = false;
+
+    // The emitted power the solve refined by: the threshold stays relative
+    // to it, and an edit's light is judged in that scale
+    // (LineSpaceUpdate::setLightScale).
+    double anchorPower = 0.0;
 
     // Refinement judges a link by its source's radiosity as last solved.
     void setOracles() {
@@ -639,6 +643,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     if (st.iterations > 0) s.updater.guessBounceSeconds(st.solveSeconds / st.iterations, st.links, st.elements);
     // From here on the oracles follow the light in steps from these anchors.
     anchorOracles(s.hierarchy);
+    s.anchorPower = s.refiner.settings().referencePower;
     // First guess of a link update's cost, until the frames give a fit: the
     // refinement time per link made, times 5 for the push-pull and meshing
     // of what it changes (in `office`, a frame's time grows by 8.6 us per
@@ -997,20 +1002,16 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     if (changed.empty()) return FrameStats{};  // the values they already have: nothing changes
     const UpdateSettings inner = s.forUpdater(settings, 0.0);
     FrameStats stats = s.updater.propagate(changed, inner);
-    // The light changed everywhere its bounces reached, not in a region a
-    // shaft bounds: refinement is judged again from it, as a solve of the
-    // edited scene would judge (its threshold relative to the new emitted
-    // power, the oracles at the new radiosity), and anchored there.
+    // Refinement follows the light the edit changed in steps from the
+    // solve's (update/OracleSteps.h), each element by its share of the
+    // emitted power: an edit taken back returns to the solve's hierarchy.
+    // The light links of punctual lights judge against the power now.
     const double power = emittedPower(s.scene);
     if (power > 0.0) {
-        RefineSettings rs = s.refiner.settings();
-        rs.referencePower = power;
-        s.refiner.setSettings(rs);
-        s.setLightThreshold();
+        s.updater.setLightScale(s.anchorPower / power);
+        s.lightLinks.setThreshold(s.refiner.settings().epsilon * power);
     }
-    s.setOracles();
     s.updater.judgeAgain(inner, stats);
-    anchorOracles(s.hierarchy);
     s.buildMesh(stats, settings.deadlineSeconds);
     return stats;
 }

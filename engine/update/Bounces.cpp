@@ -329,7 +329,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     std::sort(touched_.begin(), touched_.end());
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
     const std::size_t touched = touched_.size();
-    const std::vector<ElementId> moved = stepOracles(h_, touched_, kOracleFloor * referenceRadiosity_);
+    const std::vector<ElementId> moved = stepOracles(h_, touched_, kOracleFloor * referenceRadiosity_, lightScale_);
     touched_.clear();
     if (moved.empty()) return;
     const std::size_t spentBefore = stats.spent;

@@ -71,14 +71,17 @@ public:
     // changed: their radiosity is pushed again, the change goes out through
     // further bounces, and refinement follows the light, within the budget.
     FrameStats propagate(const std::vector<ElementId>& elements, const UpdateSettings& settings);
-    // After such a change, once the oracles are set from the new light:
-    // every active link judged again (refined within the budget, the rest
-    // pending) and the p-links no longer needed reinstated, as a solve's
-    // refinement would leave them; then the light of what changed, bounced.
-    // Adds to `stats` and finishes the frame that propagate began. On a
-    // deadline, when judging is not expected to fit (at what it last took),
-    // it waits for idle time (refinePending), counted as one pending link.
+    // After such a change, refinement follows the light as after a move
+    // (followTheLight: the oracles of what changed step, and the links of
+    // those that stepped are judged again, within the budget). Adds to
+    // `stats` and finishes the frame that propagate began.
     void judgeAgain(const UpdateSettings& settings, FrameStats& stats);
+    // The solve's emitted power over the current one (edits change it): the
+    // oracles' levels follow each element's B times this, its share of the
+    // light (OracleSteps.h), so that a scene dimmed as a whole keeps its
+    // refinement, as a solve of it would. When it changed, every element is
+    // stepped at the next followTheLight.
+    void setLightScale(double scale);
     // Refines, within the budget, the links a budget left coarse, with no
     // motion (what an idle viewer does between moves).
     FrameStats refinePending(const UpdateSettings& settings);
@@ -280,12 +283,7 @@ private:
     // Per frame.
     std::vector<ObjectMotion> motions_;
     std::chrono::steady_clock::time_point editStart_;  // when propagate began the frame judgeAgain ends
-    // Judging every active link again after an edit: refines within the
-    // budget what the criterion asks for and reinstates what it no longer
-    // does. Whether a deadline left it for idle time, and what it last took.
-    void judgeEveryLink(FrameStats& stats, std::size_t budget);
-    bool judgePending_ = false;
-    double judgeSeconds_ = 0.0;
+    double lightScale_ = 1.0;  // setLightScale
     // Whether an element lies in, or holds, a moving object's cluster.
     bool movedEnd(ElementId e) const;
     std::vector<Aabb> obstacles_;

@@ -19,12 +19,12 @@ void anchorOracles(Hierarchy& h) {
 }
 
 std::vector<ElementId> stepOracles(Hierarchy& h, std::span<const ElementId> elements,
-                                   double floor) {
+                                   double floor, double scale) {
     std::vector<ElementId> moved;
     const double logStep = std::log(OracleSteps::kStep);
     for (ElementId e : elements) {
         HElement& el = h[e];
-        const double b = oracleOf(h, e);
+        const double b = scale * oracleOf(h, e);
         if (!std::isfinite(b)) continue;
         const double steps =
             std::log((std::max(b, 0.0) + floor) / (el.anchorLight + floor)) / logStep;

@@ -37,13 +37,17 @@ struct OracleSteps {
 double oracleOf(const Hierarchy& hierarchy, ElementId e);
 
 // After a solve: every element's anchor becomes its oracle and its anchor
-// light its current B (oracleOf), at level 0.
+// light its current B (oracleOf), at level 0. Moves and edits step from
+// there.
 void anchorOracles(Hierarchy& hierarchy);
 
 // Moves the oracles of the given elements to the level nearest their current
-// B when it is more than kHysteresis steps away. `floor`: f above. Returns
-// the elements whose oracle moved.
+// B times `scale` when it is more than kHysteresis steps away. `floor`: f
+// above. `scale`: the emitted power at the solve over the current one (an
+// edit of a light changes it), so that the level follows an element's share
+// of the light: dimming every light alike changes no level, as it changes no
+// refinement of a solve. Returns the elements whose oracle moved.
 std::vector<ElementId> stepOracles(Hierarchy& hierarchy, std::span<const ElementId> elements,
-                                   double floor);
+                                   double floor, double scale);
 
 }  // namespace rad
