@@ -95,8 +95,8 @@ public:
     // the object and the value otherwise, or for an unknown object.
     FrameStats editMaterial(const std::string& object, const std::optional<glm::dvec3>& emission,
                             const std::optional<glm::dvec3>& reflectance, const UpdateSettings& settings = {});
-    // Several objects' edits in one frame: one push-pull, one judging of
-    // the links, whatever the number of objects.
+    // Several objects' edits in one frame: one push-pull, one stepping of
+    // the oracles, whatever the number of objects.
     struct MaterialEdit {
         std::string object;
         std::optional<glm::dvec3> emission;
