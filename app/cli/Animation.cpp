@@ -147,7 +147,23 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
             }
         }
         if (moves.empty()) record.stats.budget = update.budget.value_or(kUnlimited);
-        if (references) {
+        // A frame whose edits leave nothing emitting has a black full solve:
+        // no error relative to it is measured (it would divide by its mean
+        // of 0). Its samples are left empty; the frame says so.
+        const bool black = references && !engine.scene().hasEmitter();
+        if (black && references->samples.size() < std::size_t(f)) {
+            std::fprintf(stderr,
+                         "note: frame %d: nothing emits light, so its full solve is black; no error is measured "
+                         "against it\n",
+                         f);
+            references->seconds.push_back(0.0);
+            references->samples.emplace_back();
+            if (references->convergedEpsilon) {
+                references->convergedSeconds.push_back(0.0);
+                references->converged.emplace_back();
+            }
+        }
+        if (references && !black) {
             if (references->samples.size() < std::size_t(f)) {
                 const auto t = std::chrono::steady_clock::now();
                 Engine full(engine.scene(), settings);

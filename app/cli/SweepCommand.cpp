@@ -117,17 +117,18 @@ int sweep(const SweepSettings& settingsGiven) {
         if (rows.empty()) printWarnings(run.initial.warnings);  // every run solves the same: say it once
         std::vector<double> seconds, rms, objectRms, spent, budget, estimated, rmsReference;
         for (const FrameRecord& f : run.frames) {
-            rmsReference.push_back(f.errorVsConverged->rms);
-            row.worstRmsReference = std::max(row.worstRmsReference, f.errorVsConverged->rms);
             estimated.push_back(f.stats.estimatedError);
-            allEstimated.push_back(f.stats.estimatedError);
-            allRms.push_back(f.error->rms);
             seconds.push_back(f.stats.totalSeconds);
-            rms.push_back(f.error->rms);
-            objectRms.push_back(f.error->worstObjectRms);
             spent.push_back(double(f.stats.spent));
             budget.push_back(f.stats.budget == kUnlimited ? -1.0 : double(f.stats.budget));
             row.worstSeconds = std::max(row.worstSeconds, f.stats.totalSeconds);
+            if (!f.error || !f.errorVsConverged) continue;  // a frame where nothing emits (runAnimation)
+            rmsReference.push_back(f.errorVsConverged->rms);
+            row.worstRmsReference = std::max(row.worstRmsReference, f.errorVsConverged->rms);
+            allEstimated.push_back(f.stats.estimatedError);
+            allRms.push_back(f.error->rms);
+            rms.push_back(f.error->rms);
+            objectRms.push_back(f.error->worstObjectRms);
             row.worstRms = std::max(row.worstRms, f.error->rms);
             row.worstMax = std::max(row.worstMax, f.error->max);
             row.worstObjectRms = std::max(row.worstObjectRms, f.error->worstObjectRms);

@@ -141,6 +141,30 @@ TEST(CliScript, EditsAloneNeedNoMovingObject) {
     for (const json& f : frames) EXPECT_LE(jsonAt(f, "/error_vs_full/rms"), 0.01) << f.dump();
 }
 
+// The only light dimmed to zero: the last frame's full solve is black, so
+// no error relative to it is measured (its mean is 0). The frame says so
+// and the run goes on, where the full solve used to stop it with "nothing
+// emits light" and no report; the sweep leaves the frame out of its errors.
+TEST(CliScript, ALightDimmedToBlackIsComparedUntilNothingEmits) {
+    test::TempDir dir;
+    const std::string script = writeScript(dir, "off.json", R"({"frames": 2, "actions": [
+        {"object": "light", "emission": [0, 0, 0]}]})");
+    const std::string report = (dir / "r.json").string();
+    const auto r = runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote(script) +
+                          " --compare-full --report " + shellQuote(report));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("frame 2: nothing emits light"), std::string::npos) << r.output;
+    const json frames = jsonAt(test::readJson(report), "/frames");
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_LE(jsonAt(frames[0], "/error_vs_full/rms"), 0.01) << frames[0].dump();
+    EXPECT_FALSE(frames[1].contains("error_vs_full")) << frames[1].dump();
+    const auto sweep = runCli("sweep " + shellQuote(kCornell) + " --script " + shellQuote(script) +
+                              " --budgets inf --reference-epsilon 5e-5 --out " + shellQuote((dir / "sweep").string()));
+    ASSERT_EQ(sweep.exitCode, 0) << sweep.output;
+    const json run = jsonAt(test::readJson((dir / "sweep" / "trade.json").string()), "/runs/0");
+    EXPECT_LE(jsonAt(run, "/worst_rms"), 0.01) << run.dump();
+}
+
 TEST(CliScript, BadScriptsFailWithOneLineNamingTheAction) {
     test::TempDir dir;
     const auto run = [&](const std::string& text) {

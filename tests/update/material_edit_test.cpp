@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -44,6 +45,29 @@ TEST(MaterialEdit, LightDimmedToZeroIsTheSceneWithoutIt) {
     const std::uint32_t light = *scene.findObject("light");
     EXPECT_EQ(scene.materials[scene.polygons[scene.objects[lamp2].firstPolygon].material].emission, V(0.0));
     EXPECT_EQ(scene.materials[scene.polygons[scene.objects[light].firstPolygon].material].emission, V(10.0));
+}
+
+// The only light dimmed to zero: nothing emits, and the room goes black (a
+// solve of it has nothing to solve), down to what the bounces leave unsent.
+TEST(MaterialEdit, TheOnlyLightDimmedToZeroLeavesTheRoomBlack) {
+    Engine engine(test::roomWithBlock(), test::coarse());
+    ASSERT_TRUE(engine.solve().converged);
+    const auto mean = [](const RadiositySamples& s) {
+        double sum = 0.0, weight = 0.0;
+        for (std::size_t i = 0; i < s.luminance.size(); ++i) {
+            sum += s.weight[i] * s.luminance[i];
+            weight += s.weight[i];
+        }
+        return sum / weight;
+    };
+    const double lit = mean(engine.samples());
+    ASSERT_GT(lit, 0.0);
+    engine.editMaterial("light", V(0.0), std::nullopt);
+    engine.refinePending();
+    const RadiositySamples dark = engine.samples();
+    EXPECT_TRUE(test::allFinite(dark));
+    EXPECT_LT(mean(dark), 1e-3 * lit);
+    EXPECT_LT(*std::max_element(dark.luminance.begin(), dark.luminance.end()), 1e-2 * lit);
 }
 
 TEST(MaterialEdit, EmissionRaisedAndRecolouredMatchesAFullSolve) {
