@@ -464,12 +464,13 @@ class Importer {
                 visitLight(index, value, world, item, group ? pending_[*group].object.name : std::string());
             else
                 note(item + ": node extension " + name + " ignored");
-        const bool dynamic = extrasFlag(node, "dynamic");
+        const bool dynamic = extrasFlag(node, "dynamic", item);
+        const bool marked = dynamic || extrasFlag(node, "object", item);
         if (group) {
-            if (dynamic || extrasFlag(node, "object"))
+            if (marked)
                 note(item + ": marked as an object inside '" + pending_[*group].object.name +
                      "', part of it");
-        } else if (dynamic || extrasFlag(node, "object")) {
+        } else if (marked) {
             // A chair made of legs, seat and back under one node moves as one.
             PendingObject pending;
             pending.item = item;
@@ -542,9 +543,16 @@ class Importer {
         lights_.push_back(light);
     }
 
-    static bool extrasFlag(const tinygltf::Node& node, const char* key) {
-        return node.extras.IsObject() && node.extras.Has(key) && node.extras.Get(key).IsBool() &&
-               node.extras.Get(key).Get<bool>();
+    // true, or a number other than 0: Blender writes a custom property set
+    // to True as 1 (its properties have no boolean type). Anything else is
+    // noted and read as false.
+    bool extrasFlag(const tinygltf::Node& node, const char* key, const std::string& item) {
+        if (!node.extras.IsObject() || !node.extras.Has(key)) return false;
+        const tinygltf::Value& v = node.extras.Get(key);
+        if (v.IsBool()) return v.Get<bool>();
+        if (v.IsNumber()) return v.GetNumberAsDouble() != 0.0;
+        note(item + ": extras." + key + " is not true, false or a number: ignored");
+        return false;
     }
 
     void visitCamera(int cameraIndex, const glm::dmat4& world, const std::string& item) {

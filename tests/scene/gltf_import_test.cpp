@@ -388,11 +388,24 @@ TEST(GltfImport, ExtrasDynamicFlag) {
     g.addNode("\"name\":\"Mover\",\"mesh\":0,\"extras\":{\"dynamic\":true}");
     g.addNode("\"name\":\"Still\",\"mesh\":0,\"translation\":[0,0,1],\"extras\":{\"dynamic\":false}");
     g.addNode("\"name\":\"Plain\",\"mesh\":0,\"translation\":[0,0,2],\"extras\":{\"other\":1}");
-    const Scene s = loadGltf(path(g.writeEmbedded(dir)));
-    ASSERT_EQ(s.objects.size(), 3u);
+    // Blender writes a custom property set to True as 1 (its properties have
+    // no boolean type); a string is no flag, and says so.
+    g.addNode("\"name\":\"FromBlender\",\"mesh\":0,\"translation\":[0,0,3],\"extras\":{\"dynamic\":1}");
+    g.addNode("\"name\":\"Real\",\"mesh\":0,\"translation\":[0,0,4],\"extras\":{\"dynamic\":0.0,\"object\":1.0}");
+    g.addNode("\"name\":\"Worded\",\"mesh\":0,\"translation\":[0,0,5],\"extras\":{\"dynamic\":\"yes\"}");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    ASSERT_EQ(s.objects.size(), 6u);
     EXPECT_TRUE(s.objects[*s.findObject("Mover")].dynamic);
     EXPECT_FALSE(s.objects[*s.findObject("Still")].dynamic);
     EXPECT_FALSE(s.objects[*s.findObject("Plain")].dynamic);
+    EXPECT_TRUE(s.objects[*s.findObject("FromBlender")].dynamic);
+    EXPECT_FALSE(s.objects[*s.findObject("Real")].dynamic);
+    EXPECT_FALSE(s.objects[*s.findObject("Worded")].dynamic);
+    bool worded = false;
+    for (const std::string& line : notes.lines)
+        worded = worded || (line.find("Worded") != std::string::npos && line.find("extras.dynamic") != std::string::npos);
+    EXPECT_TRUE(worded) << "a string flag is noted";
 }
 
 TEST(GltfImport, RepeatedNamesGetSuffixes) {
