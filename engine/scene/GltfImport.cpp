@@ -17,6 +17,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "scene/ClosedBackFaces.h"
+
 namespace rad {
 namespace {
 
@@ -1020,6 +1022,21 @@ class Importer {
         // Each pending object's polygons; Polygon::object is the pending
         // index until the objects without polygons are left out.
         std::vector<std::vector<Polygon>> polygons(pending_.size());
+        // Where light comes from: the punctual lights, and the corners and
+        // centres of emitting triangles (with their object), for the backs
+        // of closed doubleSided meshes (scene/ClosedBackFaces.h).
+        constexpr std::size_t kNoObject = std::size_t(-1);
+        std::vector<std::pair<glm::dvec3, std::size_t>> lightAt;
+        for (const PunctualLight& l : lights_) lightAt.emplace_back(l.position, kNoObject);
+        for (std::size_t i = 0; i < pending_.size(); ++i)
+            for (const WorldTriangle& t : pending_[i].triangles)
+                if (glm::any(glm::greaterThan(materials_[t.material].emission, glm::dvec3(0.0)))) {
+                    for (const glm::dvec3& v : t.v) lightAt.emplace_back(v, i);
+                    lightAt.emplace_back((t.v[0] + t.v[1] + t.v[2]) / 3.0, i);
+                }
+        std::size_t frontOnly = 0;
+        std::string closedWhere;
+        int closedListed = 0;
         std::size_t dropped = 0;
         std::string where;  // the first objects with degenerate triangles
         int listed = 0;
@@ -1033,7 +1050,23 @@ class Importer {
                     kept.push_back(t);
                 }
             }
-            appendPolygons(kept, static_cast<std::uint32_t>(i), polygons[i]);
+            bool backs = true;
+            if (std::any_of(kept.begin(), kept.end(), [&](const WorldTriangle& t) { return doubleSided_.count(t.material) > 0; })) {
+                std::vector<std::array<glm::dvec3, 3>> surface;
+                for (const WorldTriangle& t : kept) surface.push_back(t.v);
+                std::vector<glm::dvec3> others;
+                for (const auto& [x, object] : lightAt)
+                    if (object != i) others.push_back(x);
+                backs = !backFacesFaceNoLight(surface, others);
+                if (!backs && ++closedListed <= 3)
+                    closedWhere += (closedWhere.empty() ? "" : ", ") + pending_[i].item;
+                else if (!backs && closedListed == 4)
+                    closedWhere += ", ...";
+            }
+            const std::size_t before = polygons[i].size();
+            appendPolygons(kept, static_cast<std::uint32_t>(i), polygons[i], backs);
+            if (!backs)
+                for (std::size_t k = before; k < polygons[i].size(); ++k) frontOnly += doubleSided_.count(polygons[i][k].material);
             if (here > 0 && ++listed <= 3)
                 where += (where.empty() ? "" : ", ") + pending_[i].item + " " + std::to_string(here);
             else if (here > 0 && listed == 4)
@@ -1052,6 +1085,9 @@ class Importer {
                  " triangle(s) merged with their coplanar neighbours into convex polygons");
         if (backFaces_ > 0)
             note(std::to_string(backFaces_) + " polygon(s) of doubleSided materials given a back face of their own");
+        if (frontOnly > 0)
+            note(std::to_string(frontOnly) + " polygon(s) of doubleSided materials on closed meshes left one-sided: their "
+                 "backs face a closed space no light is in (" + closedWhere + ")");
         const std::vector<std::size_t> duplicates = dropDuplicates(polygons, 1e-9 * std::sqrt(diagonal2));
 
         Scene scene;
@@ -1178,10 +1214,11 @@ class Importer {
         return droppedPer;
     }
 
-    void appendPolygons(std::vector<WorldTriangle> tris, std::uint32_t object, std::vector<Polygon>& out) {
+    // `backs`: doubleSided materials give their polygons back faces.
+    void appendPolygons(std::vector<WorldTriangle> tris, std::uint32_t object, std::vector<Polygon>& out, bool backs) {
         const auto emit = [&](Polygon p) {
             out.push_back(p);
-            if (doubleSided_.count(p.material)) {
+            if (backs && doubleSided_.count(p.material)) {
                 // Both faces reflect: the back is a polygon of its own, the
                 // same vertices in reverse order (a zero-thickness slab,
                 // which visibility separates), lit and drawn from its side.

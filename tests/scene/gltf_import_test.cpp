@@ -37,6 +37,8 @@ using test::base64;
 const std::vector<glm::vec3> kRect = {{0, 0, 0}, {2, 0, 0}, {2, 3, 0}, {0, 3, 0}};
 const std::vector<std::uint32_t> kRectIndices = {0, 1, 2, 0, 2, 3};
 
+std::string noteWith(const ImportNotes& notes, const std::string& word);
+
 int addRectMesh(GltfBuilder& g, const std::string& name, int material) {
     return g.addMesh(name, g.addPositions(kRect), g.addIndices(kRectIndices), material);
 }
@@ -583,6 +585,37 @@ TEST(GltfImport, DoubleSidedPanelIsLitOnBothSides) {
             EXPECT_EQ(backCount, 0);
         }
     }
+}
+
+// Modelling tools mark materials doubleSided by default, and most of their
+// meshes are closed: a box's backs face its inside, where no light is, and
+// stay one-sided (scene/ClosedBackFaces.h). An open panel keeps its back,
+// and so does a closed housing with a bulb in it.
+TEST(GltfImport, AClosedDoubleSidedMeshKeepsOneFaceWhereItsBacksFaceNoLight) {
+    TempDir dir;
+    GltfBuilder g;
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint32_t> idx;
+    cubeGeometry(pos, idx);  // unit cube about the origin, faces outward
+    const int two = g.addMaterial(
+        "{\"name\":\"Two\",\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.5,0.5,1]}}");
+    const int light = g.addMaterial(
+        "{\"name\":\"Light\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},\"emissiveFactor\":[1,1,1]}");
+    const int cube = g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), two);
+    const int panel = addRectMesh(g, "Panel", two);
+    const int lamp = addRectMesh(g, "Lamp", light);
+    g.addNode("\"name\":\"Box\",\"mesh\":" + std::to_string(cube) + ",\"translation\":[1,1,0.5]");
+    g.addNode("\"name\":\"Floor\",\"mesh\":" + std::to_string(panel) + ",\"translation\":[-1,-1,0]");
+    g.addNode("\"name\":\"Lamp\",\"mesh\":" + std::to_string(lamp) + ",\"translation\":[0,3,2],\"rotation\":[1,0,0,0]");
+    g.addNode("\"name\":\"Housing\",\"mesh\":" + std::to_string(cube) + ",\"translation\":[5,5,1],\"scale\":[0.5,0.5,0.5]");
+    g.addNode("\"name\":\"Bulb\",\"mesh\":" + std::to_string(lamp) + ",\"translation\":[4.95,4.93,1],\"scale\":[0.05,0.05,1]");
+    ImportNotes notes;
+    const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
+    EXPECT_EQ(s.objects[*s.findObject("Box")].polygonCount, 6u);
+    EXPECT_EQ(s.objects[*s.findObject("Floor")].polygonCount, 2u);
+    EXPECT_EQ(s.objects[*s.findObject("Housing")].polygonCount, 12u);
+    EXPECT_NE(noteWith(notes, "left one-sided").find("'Box'"), std::string::npos);
+    EXPECT_EQ(noteWith(notes, "left one-sided").find("Housing"), std::string::npos);
 }
 
 // A node marked extras.dynamic (or extras.object) is one object with its
