@@ -41,7 +41,32 @@ void collectLeaves(const Hierarchy& h, ElementId e, std::vector<ElementId>& out)
 struct Scratch {
     std::vector<ElementId> leaves;
     std::vector<Vertex> corners, vertices;
+    // Per leaf, in `leaves` order: its outline, the corners and the
+    // T-vertices between them (indices into `vertices`), from ringAt[l].
+    std::vector<std::uint32_t> ring, ringAt;
 };
+
+// Triangles over a leaf's outline (convex, counter-clockwise, with
+// T-vertices on its edges), every outline vertex used and none degenerate:
+// a T-vertex left off would leave a T-junction, where the rasteriser leaves
+// cracks of background between the leaves. Cuts off a true corner at a time
+// (a convex polygon stays convex), at the lattice's exact coordinates.
+template <class Emit>
+void triangulateOutline(std::vector<std::uint32_t> ring, const std::vector<Vertex>& vertices, const Emit& emit) {
+    const auto turn = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        const LatticePoint &p = vertices[a].p, &q = vertices[b].p, &r = vertices[c].p;
+        return (q.i - p.i) * (r.j - q.j) - (q.j - p.j) * (r.i - q.i);
+    };
+    while (ring.size() > 3) {
+        const std::size_t n = ring.size();
+        std::size_t k = 0;
+        while (k < n && turn(ring[(k + n - 1) % n], ring[k], ring[(k + 1) % n]) == 0) ++k;
+        if (k == n) return;  // no area left
+        emit(ring[(k + n - 1) % n], ring[k], ring[(k + 1) % n]);
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+    }
+    if (ring.size() == 3 && turn(ring[0], ring[1], ring[2]) != 0) emit(ring[0], ring[1], ring[2]);
+}
 
 // Sorted vectors, not hash maps: a polygon has a few vertices on average,
 // and building a map per polygon per frame was most of the snapshot.
@@ -86,19 +111,29 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, MeshSnaps
 
     // Coarse leaves first: their edge ends are final when their T-vertices are set.
     std::sort(leaves.begin(), leaves.end(), [&](ElementId a, ElementId b) { return h[a].depth < h[b].depth; });
+    std::vector<std::uint32_t>& ring = scratch.ring;
+    std::vector<std::uint32_t>& ringAt = scratch.ringAt;
+    ring.clear();
+    ringAt.clear();
     for (ElementId l : leaves) {
         const HElement& e = h[l];
+        ringAt.push_back(static_cast<std::uint32_t>(ring.size()));
         for (int k = 0; k < e.patch.n; ++k) {
             const LatticePoint a = lattice(e.param[k]), b = lattice(e.param[(k + 1) % e.patch.n]);
+            const auto corner = find(a);
+            ring.push_back(static_cast<std::uint32_t>(corner - vertices.begin()));
             const std::int64_t n = std::max(std::llabs(b.i - a.i), std::llabs(b.j - a.j));
             if (n < 2) continue;
-            const glm::dvec3 va = find(a)->value, vb = find(b)->value;
+            const glm::dvec3 va = corner->value, vb = find(b)->value;
             for (std::int64_t s = 1; s < n; ++s) {
                 const auto it = find(LatticePoint{a.i + (b.i - a.i) / n * s, a.j + (b.j - a.j) / n * s});
-                if (it != vertices.end()) it->value = glm::mix(va, vb, double(s) / double(n));
+                if (it == vertices.end()) continue;
+                it->value = glm::mix(va, vb, double(s) / double(n));
+                ring.push_back(static_cast<std::uint32_t>(it - vertices.begin()));
             }
         }
     }
+    ringAt.push_back(static_cast<std::uint32_t>(ring.size()));
 
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
     const glm::vec3 normal(h[top].normal);
@@ -137,12 +172,15 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, MeshSnaps
         mesh.textureLayer.push_back(material.texture);
         mesh.texelScale.emplace_back(perTexel);
     }
-    for (ElementId l : leaves) {
-        const HElement& e = h[l];
-        std::array<std::uint32_t, 4> idx{};
-        for (int k = 0; k < e.patch.n; ++k)
-            idx[k] = base + static_cast<std::uint32_t>(find(lattice(e.param[k])) - vertices.begin());
-        for (int k = 1; k + 1 < e.patch.n; ++k) mesh.indices.insert(mesh.indices.end(), {idx[0], idx[k], idx[k + 1]});
+    for (std::size_t li = 0; li < leaves.size(); ++li) {
+        const auto first = ring.begin() + ringAt[li], last = ring.begin() + ringAt[li + 1];
+        if (last - first == h[leaves[li]].patch.n) {  // no T-vertex: a fan from the first corner
+            for (auto k = first + 1; k + 1 < last; ++k) mesh.indices.insert(mesh.indices.end(), {base + *first, base + *k, base + k[1]});
+            continue;
+        }
+        triangulateOutline(std::vector<std::uint32_t>(first, last), vertices, [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+            mesh.indices.insert(mesh.indices.end(), {base + a, base + b, base + c});
+        });
     }
 }
 
