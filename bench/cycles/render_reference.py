@@ -89,10 +89,12 @@ def clear_scene():
 LIGHT_AOV = 'light'
 
 
-def lambertian_material(name, reflectance, emission):
-    """Front: Diffuse(reflectance) + Emission(emission, strength 1). Back: black diffuse.
-    An emitter also writes 1 - Backfacing to the 'light' AOV: averaged over a pixel's camera
-    samples it is the fraction of them that see a light's front, which makes the light mask."""
+def lambertian_material(name, reflectance, emission, double_sided=False):
+    """Front: Diffuse(reflectance) + Emission(emission, strength 1). Back: black diffuse, or
+    the same as the front for a doubleSided material (the engine gives it a back face of its
+    own). An emitter also writes 1 - Backfacing (1 if doubleSided) to the 'light' AOV: averaged
+    over a pixel's camera samples it is the fraction of them that see a light's front, which
+    makes the light mask."""
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
@@ -116,10 +118,16 @@ def lambertian_material(name, reflectance, emission):
         seen = nodes.new('ShaderNodeMath')
         seen.operation = 'SUBTRACT'
         seen.inputs[0].default_value = 1.0
-        links.new(geometry.outputs['Backfacing'], seen.inputs[1])
+        if not double_sided:
+            links.new(geometry.outputs['Backfacing'], seen.inputs[1])
         aov = nodes.new('ShaderNodeOutputAOV')
         aov.name = LIGHT_AOV
         links.new(seen.outputs['Value'], aov.inputs['Value'])
+
+    if double_sided:
+        links.new(front, out.inputs['Surface'])
+        mat.cycles.sample_as_light = True
+        return mat
 
     # The back absorbs everything and emits nothing: a black diffuse BSDF ends the path.
     back = nodes.new('ShaderNodeBsdfDiffuse')
@@ -145,7 +153,7 @@ def replace_materials(gl):
         strength = m.get('extensions', {}).get('KHR_materials_emissive_strength', {}).get('emissiveStrength', 1.0)
         emission = [c * strength for c in m.get('emissiveFactor', [0.0, 0.0, 0.0])]
         name = m.get('name') or 'material-%d' % i
-        ours[name] = lambertian_material('ref-' + name, rho, emission)
+        ours[name] = lambertian_material('ref-' + name, rho, emission, m.get('doubleSided', False))
     default = lambertian_material('ref-default', [1.0, 1.0, 1.0], [0.0, 0.0, 0.0])  # glTF's default material
 
     for obj in bpy.data.objects:
@@ -162,6 +170,40 @@ def replace_materials(gl):
                 raise SystemExit('object %r: material %r is not in the glTF file' % (obj.name, imported.name))
             slot.link = 'DATA'
             slot.material = ours[imported.name]
+
+
+def set_lights(scene, gl):
+    """KHR_lights_punctual as the engine reads them: intensity (colour times `intensity`) is
+    radiant intensity I in the scene's units, a point source (radius 0). A Cycles point or spot
+    light of power P sends P / (4 pi) per steradian and a diffuse surface shows radiance rho E
+    / pi, while here a pixel reads B = rho E (see the README: radiances are pi times physical
+    ones), so P = 4 pi^2 I. A spot's cone is outerConeAngle wide; Blender's blend between the
+    cone's edge and its inside is not glTF's falloff, so a spot's rim differs. Directional
+    lights, which the engine ignores, are removed."""
+    lights = gl.get('extensions', {}).get('KHR_lights_punctual', {}).get('lights', [])
+    by_node = {}
+    for node in gl.get('nodes', []):
+        index = node.get('extensions', {}).get('KHR_lights_punctual', {}).get('light')
+        if index is not None:
+            by_node[node.get('name')] = lights[index]
+    for obj in list(scene.objects):
+        if obj.type != 'LIGHT':
+            continue
+        light = by_node.get(obj.name)
+        if light is None:
+            raise SystemExit('light object %r matches no glTF node with a punctual light' % obj.name)
+        if light.get('type') == 'directional':
+            bpy.data.objects.remove(obj, do_unlink=True)
+            continue
+        obj.data.color = light.get('color', [1.0, 1.0, 1.0])[:3]
+        obj.data.energy = 4.0 * math.pi ** 2 * light.get('intensity', 1.0)
+        obj.data.shadow_soft_size = 0.0
+        if light.get('type') == 'spot':
+            spot = light.get('spot', {})
+            outer = spot.get('outerConeAngle', math.pi / 4.0)
+            inner = spot.get('innerConeAngle', 0.0)
+            obj.data.spot_size = 2.0 * outer
+            obj.data.spot_blend = 1.0 - inner / outer if outer > 0.0 else 0.0
 
 
 def set_camera(scene, gl, width, height):
@@ -294,6 +336,7 @@ def main():
     bpy.ops.import_scene.gltf(filepath=os.path.abspath(args.scene), import_shading='FLAT', merge_vertices=False)
     scene = bpy.context.scene
     replace_materials(gl)
+    set_lights(scene, gl)
     set_camera(scene, gl, args.width, args.height)
     configure_cycles(scene, args.samples, args.seed)
 

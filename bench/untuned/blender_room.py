@@ -4,6 +4,11 @@ smooth UV sphere, a turned and scaled box, a point light in watts, a camera). No
 settings were tuned on it. Needs Debian's blender and python3-numpy (the exporter imports it):
 
     blender --background --factory-startup --python bench/untuned/blender_room.py -- OUT.gltf
+
+`bench/untuned/blender-room.glb` is its output (OUT ending in .glb: one binary file), kept with
+its Cycles reference (bench/references/blender-room.*, bench/cycles/README.md). The exporter is
+not byte for byte repeatable (the vertex data differs in its last bits between runs): the kept
+file is the one the reference was rendered from.
 """
 import bpy, math, sys
 argv = sys.argv[sys.argv.index("--") + 1:]
@@ -90,5 +95,5 @@ cam.name = "camera"
 cam.rotation_euler = (math.radians(78), 0, math.radians(55))
 scene.camera = cam
 
-bpy.ops.export_scene.gltf(filepath=out, export_format="GLTF_SEPARATE", export_cameras=True, export_lights=True,
-                          export_extras=True)
+bpy.ops.export_scene.gltf(filepath=out, export_format="GLB" if out.endswith(".glb") else "GLTF_SEPARATE",
+                          export_cameras=True, export_lights=True, export_extras=True)
