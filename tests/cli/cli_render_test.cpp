@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -159,6 +160,27 @@ TEST_F(CliRender, PngHasRequestedSizeAndDefaultFollowsCameraAspect) {
         scene.camera && scene.camera->aspectRatio ? *scene.camera->aspectRatio : 1.0;
     EXPECT_EQ(pngSize(byDefault),
               (std::array<int, 2>{static_cast<int>(std::lround(512 * aspect)), 512}));
+}
+
+// A PNG whose lit pixels are mostly past white (a scene in photometric
+// units: Blender writes its 100 W bulb as 5,435) says which exposure shows
+// them; rendered at that exposure, it says nothing.
+TEST_F(CliRender, AnOverexposedPngSaysWhichExposureShowsIt) {
+    RunResult run = runCli("render " + quote(kCornell) + " --image " + quote(path("bright.png")) +
+                           " --size 64x64 --exposure 8");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string says = "most lit pixels are past white at --exposure 8; --exposure ";
+    const std::size_t at = run.output.find(says);
+    ASSERT_NE(at, std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("note: " + path("bright.png")), run.output.rfind('\n', at) + 1) << "one note line";
+    const double shows = std::stod(run.output.substr(at + says.size()));
+    EXPECT_LT(shows, 8.0);
+    std::ostringstream ev;
+    ev << shows;
+    run = runCli("render " + quote(kCornell) + " --image " + quote(path("shown.png")) + " --size 64x64 --exposure " +
+                 ev.str());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_EQ(run.output.find("past white"), std::string::npos) << run.output;
 }
 
 TEST_F(CliRender, MissingSceneFailsWithOneLineNamingIt) {
