@@ -106,8 +106,10 @@ void renderToFile(const Scene& scene, const MeshSnapshot& mesh, const ImageReque
     writeImage(image, request.path);
     if (lowerExtension(request.path) != ".png") return;
     if (const std::optional<double> better = exposureThatShows(image, request.exposure))
-        std::fprintf(stderr, "note: %s: most lit pixels are past white at --exposure %g; --exposure %g shows them\n",
-                     request.path.c_str(), request.exposure, *better);
+        std::fprintf(
+            stderr,
+            "note: %s: most lit pixels are past white at --exposure %g; --exposure %g shows them\n",
+            request.path.c_str(), request.exposure, *better);
 }
 
 }  // namespace rad::cli

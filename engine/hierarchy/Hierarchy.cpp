@@ -221,7 +221,8 @@ ElementId Hierarchy::buildObjectCluster(const Scene& scene, std::uint32_t object
         if (const double n = glm::length(axes[k]); n > 0.0) axes[k] /= n;
     const glm::dmat3 toAxes = glm::determinant(axes) != 0.0 ? glm::inverse(axes) : glm::dmat3(1.0);
     const ElementId id = buildTree(
-        std::move(polygons), object, [&](std::uint32_t p) { return toAxes * scene.polygons[p].centroid(); },
+        std::move(polygons), object,
+        [&](std::uint32_t p) { return toAxes * scene.polygons[p].centroid(); },
         [&](std::uint32_t p) { return makeSurface(scene, p); });
     objectClusters_[object] = id;
     return id;

@@ -1,5 +1,3 @@
-#include "radiosity/Gltf.h"
-
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -17,6 +15,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "radiosity/Gltf.h"
 #include "scene/ClosedBackFaces.h"
 
 namespace rad {
@@ -1051,7 +1050,9 @@ class Importer {
                 }
             }
             bool backs = true;
-            if (std::any_of(kept.begin(), kept.end(), [&](const WorldTriangle& t) { return doubleSided_.count(t.material) > 0; })) {
+            if (std::any_of(kept.begin(), kept.end(), [&](const WorldTriangle& t) {
+                    return doubleSided_.count(t.material) > 0;
+                })) {
                 std::vector<std::array<glm::dvec3, 3>> surface;
                 for (const WorldTriangle& t : kept) surface.push_back(t.v);
                 std::vector<glm::dvec3> others;
@@ -1066,7 +1067,8 @@ class Importer {
             const std::size_t before = polygons[i].size();
             appendPolygons(kept, static_cast<std::uint32_t>(i), polygons[i], backs);
             if (!backs)
-                for (std::size_t k = before; k < polygons[i].size(); ++k) frontOnly += doubleSided_.count(polygons[i][k].material);
+                for (std::size_t k = before; k < polygons[i].size(); ++k)
+                    frontOnly += doubleSided_.count(polygons[i][k].material);
             if (here > 0 && ++listed <= 3)
                 where += (where.empty() ? "" : ", ") + pending_[i].item + " " + std::to_string(here);
             else if (here > 0 && listed == 4)
@@ -1086,8 +1088,10 @@ class Importer {
         if (backFaces_ > 0)
             note(std::to_string(backFaces_) + " polygon(s) of doubleSided materials given a back face of their own");
         if (frontOnly > 0)
-            note(std::to_string(frontOnly) + " polygon(s) of doubleSided materials on closed meshes left one-sided: their "
-                 "backs face a closed space no light is in (" + closedWhere + ")");
+            note(std::to_string(frontOnly) +
+                 " polygon(s) of doubleSided materials on closed meshes left one-sided: their "
+                 "backs face a closed space no light is in (" +
+                 closedWhere + ")");
         const std::vector<std::size_t> duplicates = dropDuplicates(polygons, 1e-9 * std::sqrt(diagonal2));
 
         Scene scene;
@@ -1215,7 +1219,8 @@ class Importer {
     }
 
     // `backs`: doubleSided materials give their polygons back faces.
-    void appendPolygons(std::vector<WorldTriangle> tris, std::uint32_t object, std::vector<Polygon>& out, bool backs) {
+    void appendPolygons(std::vector<WorldTriangle> tris, std::uint32_t object,
+                        std::vector<Polygon>& out, bool backs) {
         const auto emit = [&](Polygon p) {
             out.push_back(p);
             if (backs && doubleSided_.count(p.material)) {

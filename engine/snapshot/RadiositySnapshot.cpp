@@ -52,7 +52,8 @@ struct Scratch {
 // cracks of background between the leaves. Cuts off a true corner at a time
 // (a convex polygon stays convex), at the lattice's exact coordinates.
 template <class Emit>
-void triangulateOutline(std::vector<std::uint32_t> ring, const std::vector<Vertex>& vertices, const Emit& emit) {
+void triangulateOutline(std::vector<std::uint32_t> ring, const std::vector<Vertex>& vertices,
+                        const Emit& emit) {
     const auto turn = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         const LatticePoint &p = vertices[a].p, &q = vertices[b].p, &r = vertices[c].p;
         return (q.i - p.i) * (r.j - q.j) - (q.j - p.j) * (r.i - q.i);
@@ -175,12 +176,15 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, MeshSnaps
     for (std::size_t li = 0; li < leaves.size(); ++li) {
         const auto first = ring.begin() + ringAt[li], last = ring.begin() + ringAt[li + 1];
         if (last - first == h[leaves[li]].patch.n) {  // no T-vertex: a fan from the first corner
-            for (auto k = first + 1; k + 1 < last; ++k) mesh.indices.insert(mesh.indices.end(), {base + *first, base + *k, base + k[1]});
+            for (auto k = first + 1; k + 1 < last; ++k)
+                mesh.indices.insert(mesh.indices.end(), {base + *first, base + *k, base + k[1]});
             continue;
         }
-        triangulateOutline(std::vector<std::uint32_t>(first, last), vertices, [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-            mesh.indices.insert(mesh.indices.end(), {base + a, base + b, base + c});
-        });
+        triangulateOutline(
+            std::vector<std::uint32_t>(first, last), vertices,
+            [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+                mesh.indices.insert(mesh.indices.end(), {base + a, base + b, base + c});
+            });
     }
 }
 

@@ -40,7 +40,8 @@ const ReferenceCase kFurnishedRoomCase{"furnished-room", 128, 96, 0.07};
 // every material doubleSided, a point light, a table of five meshes under one node. No
 // issue sets its target; it is held to the Cornell box's 5% (measured 2.3%). No light is
 // in its camera's view, so it has no camera check.
-const ReferenceCase kBlenderRoomCase{"blender-room", 128, 72, 0.05, "bench/untuned/blender-room.glb"};
+const ReferenceCase kBlenderRoomCase{"blender-room", 128, 72, 0.05,
+                                     "bench/untuned/blender-room.glb"};
 
 std::string scenePath(const ReferenceCase& c) {
     return test::sourcePath(c.scene.empty() ? "scenes/" + c.name + ".gltf" : c.scene);
@@ -147,7 +148,9 @@ TEST(CyclesReference, FurnishedRoomCameraLinesUp) { expectCameraLinesUp(kFurnish
 
 TEST(CyclesAccuracy, CornellBoxWithinFivePercent) { expectWithinTarget(kCornellBoxCase); }
 TEST(CyclesAccuracy, FurnishedRoomWithinSevenPercent) { expectWithinTarget(kFurnishedRoomCase); }
-TEST(CyclesAccuracy, ARoomWrittenByBlenderWithinFivePercent) { expectWithinTarget(kBlenderRoomCase); }
+TEST(CyclesAccuracy, ARoomWrittenByBlenderWithinFivePercent) {
+    expectWithinTarget(kBlenderRoomCase);
+}
 
 }  // namespace
 }  // namespace rad

@@ -172,13 +172,14 @@ TEST_F(CliRender, AnOverexposedPngSaysWhichExposureShowsIt) {
     const std::string says = "most lit pixels are past white at --exposure 8; --exposure ";
     const std::size_t at = run.output.find(says);
     ASSERT_NE(at, std::string::npos) << run.output;
-    EXPECT_EQ(run.output.find("note: " + path("bright.png")), run.output.rfind('\n', at) + 1) << "one note line";
+    EXPECT_EQ(run.output.find("note: " + path("bright.png")), run.output.rfind('\n', at) + 1)
+        << "one note line";
     const double shows = std::stod(run.output.substr(at + says.size()));
     EXPECT_LT(shows, 8.0);
     std::ostringstream ev;
     ev << shows;
-    run = runCli("render " + quote(kCornell) + " --image " + quote(path("shown.png")) + " --size 64x64 --exposure " +
-                 ev.str());
+    run = runCli("render " + quote(kCornell) + " --image " + quote(path("shown.png")) +
+                 " --size 64x64 --exposure " + ev.str());
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_EQ(run.output.find("past white"), std::string::npos) << run.output;
 }

@@ -4,16 +4,16 @@
 // and cluster shapes whose facets are sized to them and hold their area,
 // with samples on their members' front sides that stand for that area.
 
+#include "hierarchy/Hierarchy.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
-
-#include "hierarchy/Hierarchy.h"
 #include "radiosity/Gltf.h"
 #include "support/TestScenes.h"
 
@@ -74,7 +74,8 @@ std::size_t checkSubtree(const Scene& scene, const Hierarchy& h, ElementId id, s
 }
 
 // The polygons under each cluster of `cluster`'s subtree, each list sorted.
-void collectGroups(const Hierarchy& h, ElementId cluster, std::vector<std::vector<std::uint32_t>>& groups) {
+void collectGroups(const Hierarchy& h, ElementId cluster,
+                   std::vector<std::vector<std::uint32_t>>& groups) {
     std::vector<std::uint32_t> polygons;
     for (std::vector<ElementId> stack{cluster}; !stack.empty();) {
         const ElementId e = stack.back();
@@ -100,20 +101,25 @@ TEST(Hierarchy, AnObjectsClustersDoNotChangeWhenItTurns) {
     const auto grouped = [](double degrees) {
         Scene s;
         const auto m = test::addMaterial(s, glm::dvec3(0.5), glm::dvec3(0.0));
-        const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::dvec3(0.0, 1.0, 0.0));
-        const glm::dmat4 diamond = glm::rotate(glm::dmat4(1.0), glm::radians(45.0), glm::dvec3(0.0, 1.0, 0.0));
+        const glm::dmat4 turn =
+            glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::dvec3(0.0, 1.0, 0.0));
+        const glm::dmat4 diamond =
+            glm::rotate(glm::dmat4(1.0), glm::radians(45.0), glm::dvec3(0.0, 1.0, 0.0));
         std::vector<std::array<glm::dvec3, 4>> quads;
         const double h = 0.05;
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j) {
                 const glm::dvec3 c(0.3 * (i - 1.5), 0.0, 0.3 * (j - 1.5));
-                std::array<glm::dvec3, 4> q = {c + glm::dvec3(-h, 0, -h), c + glm::dvec3(-h, 0, h), c + glm::dvec3(h, 0, h),
+                std::array<glm::dvec3, 4> q = {c + glm::dvec3(-h, 0, -h), c + glm::dvec3(-h, 0, h),
+                                               c + glm::dvec3(h, 0, h),
                                                c + glm::dvec3(h, 0, -h)};  // facing +y
-                for (glm::dvec3& v : q) v = glm::dvec3(turn * diamond * glm::dvec4(v, 1.0)) + glm::dvec3(2.0, 1.0, 3.0);
+                for (glm::dvec3& v : q)
+                    v = glm::dvec3(turn * diamond * glm::dvec4(v, 1.0)) + glm::dvec3(2.0, 1.0, 3.0);
                 quads.push_back(q);
             }
         const std::uint32_t o = test::addQuadObject(s, "tiles", m, quads);
-        s.objects[o].worldFromLocal = glm::translate(glm::dmat4(1.0), glm::dvec3(2.0, 1.0, 3.0)) * turn;
+        s.objects[o].worldFromLocal =
+            glm::translate(glm::dmat4(1.0), glm::dvec3(2.0, 1.0, 3.0)) * turn;
         const Hierarchy hierarchy(s, 1e-3);
         std::vector<std::vector<std::uint32_t>> groups;
         collectGroups(hierarchy, hierarchy.objectCluster(o), groups);
@@ -122,7 +128,8 @@ TEST(Hierarchy, AnObjectsClustersDoNotChangeWhenItTurns) {
     };
     const auto unturned = grouped(0.0);
     EXPECT_GT(unturned.size(), 2u) << "the tiles make a tree";
-    for (double degrees : {5.0, -5.0, 30.0}) EXPECT_EQ(grouped(degrees), unturned) << degrees << " degrees";
+    for (double degrees : {5.0, -5.0, 30.0})
+        EXPECT_EQ(grouped(degrees), unturned) << degrees << " degrees";
 }
 
 TEST(Hierarchy, AttachToRootKeepsTheTreeWellFormed) {

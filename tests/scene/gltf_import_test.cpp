@@ -392,9 +392,13 @@ TEST(GltfImport, ExtrasDynamicFlag) {
     g.addNode("\"name\":\"Plain\",\"mesh\":0,\"translation\":[0,0,2],\"extras\":{\"other\":1}");
     // Blender writes a custom property set to True as 1 (its properties have
     // no boolean type); a string is no flag, and says so.
-    g.addNode("\"name\":\"FromBlender\",\"mesh\":0,\"translation\":[0,0,3],\"extras\":{\"dynamic\":1}");
-    g.addNode("\"name\":\"Real\",\"mesh\":0,\"translation\":[0,0,4],\"extras\":{\"dynamic\":0.0,\"object\":1.0}");
-    g.addNode("\"name\":\"Worded\",\"mesh\":0,\"translation\":[0,0,5],\"extras\":{\"dynamic\":\"yes\"}");
+    g.addNode(
+        "\"name\":\"FromBlender\",\"mesh\":0,\"translation\":[0,0,3],\"extras\":{\"dynamic\":1}");
+    g.addNode(
+        "\"name\":\"Real\",\"mesh\":0,\"translation\":[0,0,4],\"extras\":{\"dynamic\":0.0,"
+        "\"object\":1.0}");
+    g.addNode(
+        "\"name\":\"Worded\",\"mesh\":0,\"translation\":[0,0,5],\"extras\":{\"dynamic\":\"yes\"}");
     ImportNotes notes;
     const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
     ASSERT_EQ(s.objects.size(), 6u);
@@ -406,7 +410,8 @@ TEST(GltfImport, ExtrasDynamicFlag) {
     EXPECT_FALSE(s.objects[*s.findObject("Worded")].dynamic);
     bool worded = false;
     for (const std::string& line : notes.lines)
-        worded = worded || (line.find("Worded") != std::string::npos && line.find("extras.dynamic") != std::string::npos);
+        worded = worded || (line.find("Worded") != std::string::npos &&
+                            line.find("extras.dynamic") != std::string::npos);
     EXPECT_TRUE(worded) << "a string flag is noted";
 }
 
@@ -598,17 +603,23 @@ TEST(GltfImport, AClosedDoubleSidedMeshKeepsOneFaceWhereItsBacksFaceNoLight) {
     std::vector<std::uint32_t> idx;
     cubeGeometry(pos, idx);  // unit cube about the origin, faces outward
     const int two = g.addMaterial(
-        "{\"name\":\"Two\",\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.5,0.5,1]}}");
+        "{\"name\":\"Two\",\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,"
+        "0.5,0.5,1]}}");
     const int light = g.addMaterial(
-        "{\"name\":\"Light\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},\"emissiveFactor\":[1,1,1]}");
+        "{\"name\":\"Light\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},"
+        "\"emissiveFactor\":[1,1,1]}");
     const int cube = g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), two);
     const int panel = addRectMesh(g, "Panel", two);
     const int lamp = addRectMesh(g, "Lamp", light);
     g.addNode("\"name\":\"Box\",\"mesh\":" + std::to_string(cube) + ",\"translation\":[1,1,0.5]");
-    g.addNode("\"name\":\"Floor\",\"mesh\":" + std::to_string(panel) + ",\"translation\":[-1,-1,0]");
-    g.addNode("\"name\":\"Lamp\",\"mesh\":" + std::to_string(lamp) + ",\"translation\":[0,3,2],\"rotation\":[1,0,0,0]");
-    g.addNode("\"name\":\"Housing\",\"mesh\":" + std::to_string(cube) + ",\"translation\":[5,5,1],\"scale\":[0.5,0.5,0.5]");
-    g.addNode("\"name\":\"Bulb\",\"mesh\":" + std::to_string(lamp) + ",\"translation\":[4.95,4.93,1],\"scale\":[0.05,0.05,1]");
+    g.addNode("\"name\":\"Floor\",\"mesh\":" + std::to_string(panel) +
+              ",\"translation\":[-1,-1,0]");
+    g.addNode("\"name\":\"Lamp\",\"mesh\":" + std::to_string(lamp) +
+              ",\"translation\":[0,3,2],\"rotation\":[1,0,0,0]");
+    g.addNode("\"name\":\"Housing\",\"mesh\":" + std::to_string(cube) +
+              ",\"translation\":[5,5,1],\"scale\":[0.5,0.5,0.5]");
+    g.addNode("\"name\":\"Bulb\",\"mesh\":" + std::to_string(lamp) +
+              ",\"translation\":[4.95,4.93,1],\"scale\":[0.05,0.05,1]");
     ImportNotes notes;
     const Scene s = loadGltf(path(g.writeEmbedded(dir)), &notes);
     EXPECT_EQ(s.objects[*s.findObject("Box")].polygonCount, 6u);

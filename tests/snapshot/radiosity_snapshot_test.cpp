@@ -62,12 +62,15 @@ TEST(RadiositySnapshot, TVerticesTakeTheValueAlongTheCoarseEdge) {
     // edges through (0.5, 0.25) and (0.25, 0.5) are cut there.
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3)
         for (int k = 0; k < 3; ++k) {
-            const glm::dvec3 a(mesh.positions[mesh.indices[t + k]]), b(mesh.positions[mesh.indices[t + (k + 1) % 3]]);
+            const glm::dvec3 a(mesh.positions[mesh.indices[t + k]]),
+                b(mesh.positions[mesh.indices[t + (k + 1) % 3]]);
             for (const glm::vec3& p : mesh.positions) {
                 const glm::dvec3 x(p);
                 const double along = glm::dot(x - a, b - a) / glm::dot(b - a, b - a);
-                EXPECT_FALSE(along > 1e-9 && along < 1.0 - 1e-9 && glm::length(a + along * (b - a) - x) < 1e-9)
-                    << "vertex " << x.x << "," << x.y << " inside the edge " << a.x << "," << a.y << " - " << b.x << "," << b.y;
+                EXPECT_FALSE(along > 1e-9 && along < 1.0 - 1e-9 &&
+                             glm::length(a + along * (b - a) - x) < 1e-9)
+                    << "vertex " << x.x << "," << x.y << " inside the edge " << a.x << "," << a.y
+                    << " - " << b.x << "," << b.y;
             }
         }
 }
