@@ -82,6 +82,10 @@ bool backFacesFaceNoLight(std::span<const std::array<glm::dvec3, 3>> triangles,
             c.hi = glm::max(c.hi, x);
         }
     }
+    // Each point in a part's box costs a pass over the part's triangles: past
+    // this many triangle visits (about half a second), the backs are kept.
+    constexpr std::size_t kMostVisits = 20'000'000;
+    std::size_t visits = 0;
     for (const auto& [root, c] : components) {
         const glm::dvec3 e = c.hi - c.lo;
         // Flat (a sheet closed on itself): no inside to speak of.
@@ -93,6 +97,8 @@ bool backFacesFaceNoLight(std::span<const std::array<glm::dvec3, 3>> triangles,
             const glm::dvec3 margin = 1e-6 * e;
             if (glm::all(glm::greaterThanEqual(p, c.lo - margin)) &&
                 glm::all(glm::lessThanEqual(p, c.hi + margin))) {
+                visits += c.triangles.size();
+                if (visits > kMostVisits) return false;
                 double omega = 0.0;
                 for (std::size_t t : c.triangles)
                     omega +=

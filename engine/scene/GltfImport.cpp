@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 #include <unordered_map>
+#include <tuple>
 #include <utility>
 
 #include "radiosity/Gltf.h"
@@ -1033,6 +1034,12 @@ class Importer {
                     for (const glm::dvec3& v : t.v) lightAt.emplace_back(v, i);
                     lightAt.emplace_back((t.v[0] + t.v[1] + t.v[2]) / 3.0, i);
                 }
+        // An emitter's triangles share their corners: each point once.
+        std::sort(lightAt.begin(), lightAt.end(), [](const auto& a, const auto& b) {
+            return std::tie(a.first.x, a.first.y, a.first.z, a.second) <
+                   std::tie(b.first.x, b.first.y, b.first.z, b.second);
+        });
+        lightAt.erase(std::unique(lightAt.begin(), lightAt.end()), lightAt.end());
         std::size_t frontOnly = 0;
         std::string closedWhere;
         int closedListed = 0;
