@@ -41,7 +41,7 @@ struct Component {
 }  // namespace
 
 bool backFacesFaceNoLight(std::span<const std::array<glm::dvec3, 3>> triangles,
-                          std::span<const glm::dvec3> lightPoints) {
+                          std::span<const glm::dvec3> lightPoints, std::size_t mostVisits) {
     if (triangles.empty()) return false;
     std::unordered_map<glm::dvec3, std::uint32_t, PointHash> ids;
     std::vector<std::array<std::uint32_t, 3>> tri(triangles.size());
@@ -82,9 +82,6 @@ bool backFacesFaceNoLight(std::span<const std::array<glm::dvec3, 3>> triangles,
             c.hi = glm::max(c.hi, x);
         }
     }
-    // Each point in a part's box costs a pass over the part's triangles: past
-    // this many triangle visits (about half a second), the backs are kept.
-    constexpr std::size_t kMostVisits = 20'000'000;
     std::size_t visits = 0;
     for (const auto& [root, c] : components) {
         const glm::dvec3 e = c.hi - c.lo;
@@ -98,7 +95,7 @@ bool backFacesFaceNoLight(std::span<const std::array<glm::dvec3, 3>> triangles,
             if (glm::all(glm::greaterThanEqual(p, c.lo - margin)) &&
                 glm::all(glm::lessThanEqual(p, c.hi + margin))) {
                 visits += c.triangles.size();
-                if (visits > kMostVisits) return false;
+                if (visits > mostVisits) return false;
                 double omega = 0.0;
                 for (std::size_t t : c.triangles)
                     omega +=

@@ -12,6 +12,7 @@
 // its inside's near pairs, whose form factors add up past 1).
 
 #include <array>
+#include <cstddef>
 #include <glm/glm.hpp>
 #include <span>
 #include <vector>
@@ -24,9 +25,10 @@ namespace rad {
 // triangles that run along it in opposite directions (vertices matched
 // exactly, as an exporter writes them). A light point on or near a surface
 // counts as in the space behind it. Each light point within a closed part's
-// box costs a pass over its triangles; past 20 million triangle visits (a
-// whole building in one mesh, many lights inside) the answer is false.
+// box costs a pass over its triangles; past `mostVisits` triangle visits (20
+// million: about half a second; a whole building in one mesh with many
+// lights inside) the answer is false.
 bool backFacesFaceNoLight(std::span<const std::array<glm::dvec3, 3>> triangles,
-                          std::span<const glm::dvec3> lightPoints);
+                          std::span<const glm::dvec3> lightPoints, std::size_t mostVisits = 20'000'000);
 
 }  // namespace rad

@@ -72,6 +72,15 @@ TEST(ClosedBackFaces, EachClosedPartIsJudgedOnItsOwn) {
     EXPECT_FALSE(unlit(table, {V(0.5, 0.5, 2.5), V(0.02, 0.02, 0.3)}));  // a light in the leg
 }
 
+// Each light point in a part's box costs a pass over its triangles: past
+// the cap, the backs are kept (the answer is false), whatever the rest says.
+TEST(ClosedBackFaces, PastItsWorkCapItKeepsTheBacks) {
+    const auto room = box(V(0.0), V(4.0, 3.0, 5.0), false);
+    const std::vector<V> lights = {V(1.0, 2.9, 1.0), V(3.0, 2.9, 1.0), V(1.0, 2.9, 4.0), V(3.0, 2.9, 4.0)};
+    EXPECT_TRUE(backFacesFaceNoLight(room, lights, 4 * 12));
+    EXPECT_FALSE(backFacesFaceNoLight(room, lights, 4 * 12 - 1));
+}
+
 TEST(ClosedBackFaces, FarFromTheOrigin) {
     const V o(1.0e5, -2.0e5, 3.0e4);
     const auto b = box(o, o + V(0.01), true);
