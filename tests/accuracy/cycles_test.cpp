@@ -42,6 +42,10 @@ const ReferenceCase kFurnishedRoomCase{"furnished-room", 128, 96, 0.07};
 // in its camera's view, so it has no camera check.
 const ReferenceCase kBlenderRoomCase{"blender-room", 128, 72, 0.05,
                                      "bench/untuned/blender-room.glb"};
+// Measured in the README (12.2% at the default settings), not asserted: no
+// issue sets its target, and its solve under the sanitizers would cost CI
+// time the others need. Its reference is checked against the scene file.
+const ReferenceCase kOfficeCase{"office", 128, 96, 0.0};
 
 std::string scenePath(const ReferenceCase& c) {
     return test::sourcePath(c.scene.empty() ? "scenes/" + c.name + ".gltf" : c.scene);
@@ -141,6 +145,7 @@ TEST(CyclesReference, MatchesTheSceneFiles) {
     expectReferenceMatchesScene(kCornellBoxCase);
     expectReferenceMatchesScene(kFurnishedRoomCase);
     expectReferenceMatchesScene(kBlenderRoomCase);
+    expectReferenceMatchesScene(kOfficeCase);
 }
 
 TEST(CyclesReference, CornellBoxCameraLinesUp) { expectCameraLinesUp(kCornellBoxCase); }
