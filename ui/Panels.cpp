@@ -69,7 +69,7 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
     ImGui::SliderFloat("epsilon", &c.epsilon, 1e-5f, 1e-2f, "%.1e", ImGuiSliderFlags_Logarithmic);
     a.epsilonCommitted = ImGui::IsItemDeactivatedAfterEdit();
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("re-solves when the slider is released");
-    a.exposureChanged = ImGui::SliderFloat("exposure EV", &c.exposure, -6.0f, 6.0f, "%.1f");
+    a.exposureChanged = ImGui::SliderFloat("exposure EV", &c.exposure, -20.0f, 20.0f, "%.1f");
     a.overlaysChanged |= ImGui::Checkbox("modified links (yellow, L)", &c.showLinks);
     if (c.showLinks && s.overlayLinksShown < s.overlayLinks)
         ImGui::TextDisabled("  %zu of %zu drawn, evenly spread", s.overlayLinksShown, s.overlayLinks);

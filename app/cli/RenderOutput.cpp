@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "image/Exposure.h"
 #include "image/Image.h"
 #include "render/CameraView.h"
 #include "render/OffscreenRenderer.h"
@@ -25,25 +26,6 @@ std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return ext;
-}
-
-// A PNG whose lit pixels are mostly past white shows nothing but their
-// outlines: a scene in photometric units (Blender writes its 100 W bulb as
-// 5,435 in `intensity`) wants a lower exposure. When more than a quarter of
-// the lit pixels are past white, the exposure that brings nine in ten of
-// them under it (in half stops); none otherwise.
-std::optional<double> exposureThatShows(const Image& image, double exposure) {
-    std::vector<float> lit;
-    for (std::size_t i = 0; i + 2 < image.rgb.size(); i += 3) {
-        const float peak = std::max({image.rgb[i], image.rgb[i + 1], image.rgb[i + 2]});
-        if (peak > 0.0f) lit.push_back(peak);
-    }
-    if (lit.empty()) return std::nullopt;
-    const auto past = std::count_if(lit.begin(), lit.end(), [](float v) { return v >= 1.0f; });
-    if (4 * past <= static_cast<std::ptrdiff_t>(lit.size())) return std::nullopt;
-    const auto ninth = lit.begin() + static_cast<std::ptrdiff_t>(0.9 * double(lit.size() - 1));
-    std::nth_element(lit.begin(), ninth, lit.end());
-    return exposure + std::floor(-2.0 * std::log2(double(*ninth))) / 2.0;
 }
 
 }  // namespace
@@ -105,7 +87,10 @@ void renderToFile(const Scene& scene, const MeshSnapshot& mesh, const ImageReque
                                  " message(s); " + request.path + " not written");
     writeImage(image, request.path);
     if (lowerExtension(request.path) != ".png") return;
-    if (const std::optional<double> better = exposureThatShows(image, request.exposure))
+    std::vector<float> peaks(image.rgb.size() / 3);
+    for (std::size_t i = 0; i < peaks.size(); ++i)
+        peaks[i] = std::max({image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2]});
+    if (const std::optional<double> better = exposureThatShows(std::move(peaks), request.exposure))
         std::fprintf(
             stderr,
             "note: %s: most lit pixels are past white at --exposure %g; --exposure %g shows them\n",

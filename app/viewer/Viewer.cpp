@@ -36,6 +36,7 @@
 #include "viewer/OrbitCamera.h"
 #include "viewer/UndoHistory.h"
 #include "viewer/ViewerOptions.h"
+#include "image/Exposure.h"
 
 namespace rad::viewer {
 namespace {
@@ -254,6 +255,7 @@ int runViewer(const ViewerOptions& options) {
         controls.targetFps = static_cast<float>(options.targetFps);
         controls.epsilon = static_cast<float>(options.engine.epsilon);
         controls.exposure = static_cast<float>(options.exposure);
+        bool exposureChosen = options.exposureGiven;
         controls.showLinks = options.overlays.modifiedLinks;
         controls.showChanged = options.overlays.changedElements;
         ui::Gizmo gizmo;
@@ -341,6 +343,23 @@ int runViewer(const ViewerOptions& options) {
                     ps.progressText += ", about " + std::to_string(std::max(1L, std::lround(*snap->secondsLeft))) + " s left";
             } else {
                 ps.status = snap->progress;
+            }
+            // A scene in photometric units (Blender's) is white at exposure
+            // 0: without --exposure, the first solution picks the exposure
+            // that shows nine in ten of its vertices under white.
+            if (solved && !exposureChosen && snap->mesh) {
+                exposureChosen = true;
+                std::vector<float> peaks(snap->mesh->colors.size());
+                for (std::size_t i = 0; i < peaks.size(); ++i) {
+                    const glm::vec3& c = snap->mesh->colors[i];
+                    peaks[i] = std::max({c.r, c.g, c.b});
+                }
+                if (const std::optional<double> ev = exposureThatShows(std::move(peaks), 0.0)) {
+                    controls.exposure = static_cast<float>(*ev);
+                    char text[96];
+                    std::snprintf(text, sizeof text, "exposure set to %g EV: most of the light was past white", *ev);
+                    lastMessage = text;
+                }
             }
             ps.warnings = importWarnings;
             if (solved)

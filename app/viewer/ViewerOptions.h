@@ -16,6 +16,9 @@ struct ViewerOptions {
     int width = 1200, height = 760;
     double targetFps = 30.0;
     double exposure = 0.0;
+    // No --exposure: the first solution's light picks one when most of it is
+    // past white (image/Exposure.h).
+    bool exposureGiven = false;
     EngineSettings engine;
     SnapshotOverlays overlays;
     std::string select;

@@ -152,6 +152,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "radiosity-viewer: %s (see --help)\n", e.what());
         return cli::kExitUsage;
     }
+    options.exposureGiven = app.count("--exposure") > 0;
     if (options.scene.empty()) options.scene = defaultScene(options.headlessStress ? "cornell-box.gltf" : "office.gltf");
     try {
         if (options.headlessStress) return runHeadlessStress(options);

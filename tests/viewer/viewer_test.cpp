@@ -212,6 +212,39 @@ TEST(ViewerTest, ExposureOneEvDownHalvesTheLinearValuesOnScreen) {
     EXPECT_NEAR(dim / bright, 0.5, 0.02) << bright << " " << dim;
 }
 
+// A scene in photometric units is white at exposure 0. Without --exposure
+// the first solution picks the exposure that shows its light; with it, the
+// user's stands. The Cornell box with its light 10,000 times brighter.
+TEST(ViewerTest, ALightPastWhiteGetsAnExposureThatShowsIt) {
+    ASSERT_TRUE(haveXvfb()) << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    TempDir dir;
+    nlohmann::json gltf = readJson(kScene);
+    for (nlohmann::json& m : gltf["materials"])
+        if (m.contains("emissiveFactor"))
+            m["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 10000.0;
+    gltf["extensionsUsed"].push_back("KHR_materials_emissive_strength");
+    const std::string scene = (dir / "bright.gltf").string();
+    { std::ofstream(scene) << gltf.dump(); }
+    auto backWall = [&](const std::string& options) {
+        const std::string png = (dir / "shot.png").string();
+        std::filesystem::remove(png);
+        const ProcessResult r = run("timeout 60 " + kXvfb + shellQuote(kViewer) + " " + shellQuote(scene) + options +
+                                    " --screenshot-after 1.5 " + shellQuote(png) + " --quit-after 2.5");
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        const Picture p = readPicture(png);
+        EXPECT_EQ(p.width, 1200) << r.output;
+        double sum = 0.0;
+        int n = 0;
+        for (int y = 150; y < 250; ++y)
+            for (int x = 700; x < 800; ++x, ++n) sum += p.at(x, y)[1] / 255.0;
+        return n > 0 ? sum / n : 0.0;
+    };
+    EXPECT_GT(backWall(" --exposure 0"), 0.99) << "white at the exposure asked for";
+    const double chosen = backWall("");
+    EXPECT_GT(chosen, 0.05);
+    EXPECT_LT(chosen, 0.95) << "the exposure chosen shows the wall";
+}
+
 bool haveDragTools() { return std::system("command -v xdotool >/dev/null && command -v xwd >/dev/null") == 0; }
 
 // tests/viewer/drag_gizmo.sh under Xvfb, writing into `dir`; `pick`: an object
