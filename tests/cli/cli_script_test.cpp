@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "support/Cli.h"
 #include "support/GltfBuilder.h"
@@ -27,6 +28,16 @@ std::string writeScript(const test::TempDir& dir, const std::string& name, const
     return path;
 }
 
+// animate SCENE --script SCRIPT --compare-full --report R: the run, and its
+// report when it succeeded (null otherwise).
+std::pair<test::RunResult, json> animateComparing(const test::TempDir& dir, const std::string& scene,
+                                                  const std::string& script) {
+    const std::string report = (dir / "r.json").string();
+    test::RunResult r = runCli("animate " + shellQuote(scene) + " --script " + shellQuote(script) +
+                               " --compare-full --report " + shellQuote(report));
+    return {r, r.exitCode == 0 ? test::readJson(report) : json()};
+}
+
 TEST(CliScript, MovesAndEditsMatchAFullSolveEveryFrame) {
     test::TempDir dir;
     const std::string script = writeScript(dir, "moves.json", R"({"frames": 3, "actions": [
@@ -34,11 +45,8 @@ TEST(CliScript, MovesAndEditsMatchAFullSolveEveryFrame) {
         {"object": "short-block", "rotate": [0, 1, 0, 15]},
         {"object": "light", "emission": [12, 10, 6]},
         {"object": "back-wall", "reflectance": [0.2, 0.5, 0.3]}]})");
-    const std::string report = (dir / "r.json").string();
-    const auto r = runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote(script) +
-                          " --compare-full --report " + shellQuote(report));
+    const auto [r, doc] = animateComparing(dir, kCornell, script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    const json doc = test::readJson(report);
     EXPECT_EQ(jsonAt(doc, "/object"), "short-block");
     EXPECT_EQ(jsonAt(doc, "/frames_requested"), 3);
     const json frames = jsonAt(doc, "/frames");
@@ -89,11 +97,8 @@ TEST(CliScript, APunctualLightMovesAndDimsInAScript) {
     const std::string script = writeScript(dir, "lamp.json", R"({"frames": 3, "actions": [
         {"object": "bulb", "translate": [2, 0, 2]},
         {"object": "bulb", "emission": [10, 9, 8]}]})");
-    const std::string report = (dir / "r.json").string();
-    const auto r = runCli("animate " + shellQuote(scene) + " --script " + shellQuote(script) +
-                          " --compare-full --report " + shellQuote(report));
+    const auto [r, doc] = animateComparing(dir, scene, script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    const json doc = test::readJson(report);
     EXPECT_EQ(jsonAt(doc, "/moving_objects"), json::array({"bulb"}));
     const json frames = jsonAt(doc, "/frames");
     ASSERT_EQ(frames.size(), 3u);
@@ -115,11 +120,8 @@ TEST(CliScript, TwoObjectsMoveAtOnce) {
         {"object": "short-block", "translate": [0, 0, 0.12]},
         {"object": "tall-block", "translate": [0.1, 0, 0]},
         {"object": "tall-block", "rotate": [0, 1, 0, -10]}]})");
-    const std::string report = (dir / "r.json").string();
-    const auto r = runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote(script) +
-                          " --compare-full --report " + shellQuote(report));
+    const auto [r, doc] = animateComparing(dir, kCornell, script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    const json doc = test::readJson(report);
     EXPECT_EQ(jsonAt(doc, "/moving_objects"), json::array({"short-block", "tall-block"}));
     for (const json& f : jsonAt(doc, "/frames")) EXPECT_LE(jsonAt(f, "/error_vs_full/rms"), 0.01) << f.dump();
 }
@@ -128,11 +130,8 @@ TEST(CliScript, EditsAloneNeedNoMovingObject) {
     test::TempDir dir;
     const std::string script = writeScript(dir, "dim.json", R"({"frames": 2, "actions": [
         {"object": "light", "emission": [2, 2, 2]}]})");
-    const std::string report = (dir / "r.json").string();
-    const auto r = runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote(script) +
-                          " --compare-full --report " + shellQuote(report));
+    const auto [r, doc] = animateComparing(dir, kCornell, script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    const json doc = test::readJson(report);
     EXPECT_TRUE(jsonAt(doc, "/object").is_null());
     const json frames = jsonAt(doc, "/frames");
     ASSERT_EQ(frames.size(), 2u);
@@ -149,12 +148,10 @@ TEST(CliScript, ALightDimmedToBlackIsComparedUntilNothingEmits) {
     test::TempDir dir;
     const std::string script = writeScript(dir, "off.json", R"({"frames": 2, "actions": [
         {"object": "light", "emission": [0, 0, 0]}]})");
-    const std::string report = (dir / "r.json").string();
-    const auto r = runCli("animate " + shellQuote(kCornell) + " --script " + shellQuote(script) +
-                          " --compare-full --report " + shellQuote(report));
+    const auto [r, doc] = animateComparing(dir, kCornell, script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("frame 2: nothing emits light"), std::string::npos) << r.output;
-    const json frames = jsonAt(test::readJson(report), "/frames");
+    const json frames = jsonAt(doc, "/frames");
     ASSERT_EQ(frames.size(), 2u);
     EXPECT_LE(jsonAt(frames[0], "/error_vs_full/rms"), 0.01) << frames[0].dump();
     EXPECT_FALSE(frames[1].contains("error_vs_full")) << frames[1].dump();

@@ -60,6 +60,14 @@ void cubeGeometry(std::vector<glm::vec3>& pos, std::vector<std::uint32_t>& idx) 
     }
 }
 
+// The unit cube of cubeGeometry as a mesh of one material; returns the mesh.
+int addCubeMesh(GltfBuilder& g, int material) {
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint32_t> idx;
+    cubeGeometry(pos, idx);
+    return g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), material);
+}
+
 std::string path(const fs::path& p) { return p.string(); }
 
 // Runs loadGltf expecting a SceneError; returns its message.
@@ -285,10 +293,7 @@ TEST(GltfImport, ParentChildTranslationRotationScale) {
 TEST(GltfImport, NegativeScaleKeepsNormalsOutward) {
     TempDir dir;
     GltfBuilder g;
-    std::vector<glm::vec3> pos;
-    std::vector<std::uint32_t> idx;
-    cubeGeometry(pos, idx);
-    g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), g.addGrey("Grey"));
+    addCubeMesh(g, g.addGrey("Grey"));
     g.addNode("\"name\":\"Plain\",\"mesh\":0");
     g.addNode("\"name\":\"Mirrored\",\"mesh\":0,\"translation\":[5,0,0],\"scale\":[-1,2,1]");
     // A mirror split between parent and child cancels out; a mirror on the
@@ -599,16 +604,13 @@ TEST(GltfImport, DoubleSidedPanelIsLitOnBothSides) {
 TEST(GltfImport, AClosedDoubleSidedMeshKeepsOneFaceWhereItsBacksFaceNoLight) {
     TempDir dir;
     GltfBuilder g;
-    std::vector<glm::vec3> pos;
-    std::vector<std::uint32_t> idx;
-    cubeGeometry(pos, idx);  // unit cube about the origin, faces outward
     const int two = g.addMaterial(
         "{\"name\":\"Two\",\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,"
         "0.5,0.5,1]}}");
     const int light = g.addMaterial(
         "{\"name\":\"Light\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},"
         "\"emissiveFactor\":[1,1,1]}");
-    const int cube = g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), two);
+    const int cube = addCubeMesh(g, two);  // unit cube about the origin, faces outward
     const int panel = addRectMesh(g, "Panel", two);
     const int lamp = addRectMesh(g, "Lamp", light);
     g.addNode("\"name\":\"Box\",\"mesh\":" + std::to_string(cube) + ",\"translation\":[1,1,0.5]");
@@ -635,10 +637,7 @@ TEST(GltfImport, AClosedDoubleSidedMeshKeepsOneFaceWhereItsBacksFaceNoLight) {
 TEST(GltfImport, AMarkedNodeIsOneObjectWithItsSubtree) {
     TempDir dir;
     GltfBuilder g;
-    std::vector<glm::vec3> pos;
-    std::vector<std::uint32_t> idx;
-    cubeGeometry(pos, idx);  // unit cube about the origin, faces outward
-    const int cube = g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), g.addGrey("Wood", 0.6));
+    const int cube = addCubeMesh(g, g.addGrey("Wood", 0.6));  // unit cube about the origin, faces outward
     const int floor = addRectMesh(g, "Floor", g.addGrey("Floor", 0.5));  // z = 0, facing +z
     const int lamp = addRectMesh(g, "Lamp", g.addMaterial("{\"name\":\"Light\",\"pbrMetallicRoughness\":"
                                                           "{\"baseColorFactor\":[0,0,0,1]},\"emissiveFactor\":[5,5,5]}"));
@@ -688,10 +687,7 @@ std::string noteWith(const ImportNotes& notes, const std::string& word) {
 TEST(GltfImportDuplicates, AnObjectRepeatedInPlaceByASecondNodeIsDropped) {
     TempDir dir;
     GltfBuilder g;
-    std::vector<glm::vec3> pos;
-    std::vector<std::uint32_t> idx;
-    cubeGeometry(pos, idx);
-    g.addMesh("Cube", g.addPositions(pos), g.addIndices(idx), g.addGrey("Grey"));
+    addCubeMesh(g, g.addGrey("Grey"));
     g.addNode("\"name\":\"Box\",\"mesh\":0");
     g.addNode("\"name\":\"Box-copy\",\"mesh\":0");  // the same mesh, the same place
     // Off by 1e-12 m: rounding, within 1e-9 of the scene's size (about 1.7 m).
