@@ -44,6 +44,7 @@ struct Scratch {
     // Per leaf, in `leaves` order: its outline, the corners and the
     // T-vertices between them (indices into `vertices`), from ringAt[l].
     std::vector<std::uint32_t> ring, ringAt;
+    std::vector<std::uint32_t> cut;  // the outline triangulateOutline cuts down
 };
 
 // Triangles over a leaf's outline (convex, counter-clockwise, with
@@ -51,8 +52,9 @@ struct Scratch {
 // a T-vertex left off would leave a T-junction, where the rasteriser leaves
 // cracks of background between the leaves. Cuts off a true corner at a time
 // (a convex polygon stays convex), at the lattice's exact coordinates.
+// `ring` is used up.
 template <class Emit>
-void triangulateOutline(std::vector<std::uint32_t> ring, const std::vector<Vertex>& vertices,
+void triangulateOutline(std::vector<std::uint32_t>& ring, const std::vector<Vertex>& vertices,
                         const Emit& emit) {
     const auto turn = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         const LatticePoint &p = vertices[a].p, &q = vertices[b].p, &r = vertices[c].p;
@@ -175,13 +177,15 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, MeshSnaps
     }
     for (std::size_t li = 0; li < leaves.size(); ++li) {
         const auto first = ring.begin() + ringAt[li], last = ring.begin() + ringAt[li + 1];
-        if (last - first == h[leaves[li]].patch.n) {  // no T-vertex: a fan from the first corner
+        // No T-vertex: a fan from the first corner, the triangles it always had.
+        if (last - first == h[leaves[li]].patch.n) {
             for (auto k = first + 1; k + 1 < last; ++k)
                 mesh.indices.insert(mesh.indices.end(), {base + *first, base + *k, base + k[1]});
             continue;
         }
+        scratch.cut.assign(first, last);
         triangulateOutline(
-            std::vector<std::uint32_t>(first, last), vertices,
+            scratch.cut, vertices,
             [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
                 mesh.indices.insert(mesh.indices.end(), {base + a, base + b, base + c});
             });
