@@ -1,3 +1,5 @@
+#include "radiosity/Gltf.h"
+
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -12,11 +14,10 @@
 #include <optional>
 #include <set>
 #include <sstream>
-#include <unordered_map>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 
-#include "radiosity/Gltf.h"
 #include "scene/ClosedBackFaces.h"
 
 namespace rad {
