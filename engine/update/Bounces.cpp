@@ -210,6 +210,11 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
     touched_.insert(touched_.end(), visited.begin(), visited.end());
     const double took = secondsSince(began) + tail_.seconds(stats.changedLeaves - leavesBefore) - tail_.seconds(0);
     waitingPushSeconds_ = std::max(took / share, 0.75 * waitingPushSeconds_);
+    // Idle time sends what that push changed too, down to the threshold:
+    // otherwise it stayed unsent until a later frame's push passed by it
+    // (0.2% of the light of a room a block left and came back to, once the
+    // fill kept the room's light).
+    if (idle_ && stats.bounces < settings.maxBounces) bounce(std::move(visited), settings, stats);
 }
 
 bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, Thresholds threshold,
