@@ -18,6 +18,7 @@
 #include "links/Link.h"
 #include "refine/Refiner.h"
 #include "snapshot/Sampling.h"
+#include "solve/Closure.h"
 #include "solve/Diagnosis.h"
 #include "solve/EnergyAudit.h"
 #include "solve/Solver.h"
@@ -539,6 +540,11 @@ const SolveStats& Engine::solve(const Progress& progress) {
     s.lightLinks.linkAll();
     s.lightLinks.takeChanges();  // the solve pushes everything
     s.solver.setDirectBound(s.lightLinks.directBound());
+    if (s.settings.fill) {
+        std::vector<float> closure;
+        measureClosure(s.scene, s.rays, s.allPolygons(), closure);
+        s.solver.setClosure(std::move(closure));
+    }
     // Radiosity starts at emission and direct light, so the first
     // refinement sees the lights.
     s.solver.pushPull();
@@ -776,6 +782,24 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         boxes.insert(boxes.end(), {before, s.scene.objectBounds(object)});
     }
     s.rays.commitInstances();
+    // The fill follows a moved object's polygons where the scene is not
+    // closed (in a closed one every polygon's view stays closed): their
+    // closure is measured again where they now stand, with the rays a solve
+    // there casts (fixed in each polygon's frame). Other polygons keep
+    // theirs (see the README's known limits).
+    std::vector<float>& closure = s.solver.closure();
+    if (std::any_of(closure.begin(), closure.end(), [](float c) { return c < 1.0f; })) {
+        std::vector<std::uint32_t> moved;
+        for (const auto& [object, m] : objects) {
+            const Object& o = s.scene.objects[object];
+            for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) moved.push_back(p);
+        }
+        std::vector<float> before(moved.size());
+        for (std::size_t i = 0; i < moved.size(); ++i) before[i] = closure[moved[i]];
+        measureClosure(s.scene, s.rays, moved, closure);
+        for (std::size_t i = 0; i < moved.size(); ++i)
+            if (closure[moved[i]] != before[i]) s.refiner.markDirty(s.hierarchy.polygonElement(moved[i]));
+    }
     // The light links: the lights that moved are linked again everywhere;
     // for the others, the polygons the objects moved on, and those whose
     // shafts toward a light the objects cross before or after the move.

@@ -69,6 +69,7 @@ Report makeReport(const SolveSettings& s, const Engine& engine, const ImportNote
         {"energy",
          {{"emitted", st.energy.emitted},
           {"received", st.energy.received},
+          {"filled", st.energy.filled},
           {"absorbed", st.energy.absorbed},
           {"reflected", st.energy.reflected},
           {"escaped", st.energy.escaped},

@@ -138,7 +138,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
     } else {
         const Down here = surfaceDown(id, down);
         if (e.isLeaf()) {
-            b = e.emission + e.reflectance * (guarded(here.irradiance, here.formFactorSum) + here.direct);
+            b = e.emission + e.reflectance * (arriving(here.irradiance, here.formFactorSum, e.polygon) + here.direct);
             walk.change += e.area * std::abs(luminance(b - e.radiosity));
             walk.total += e.area * std::abs(luminance(b));
             e.peak = luminance(b);
@@ -379,7 +379,9 @@ void Solver::forEachLeaf(
 EnergyBalance Solver::energy() const {
     EnergyBalance balance;
     forEachLeaf([&](const HElement& e, const glm::dvec3& irradiance, double sum, const glm::dvec3& direct) {
-        const glm::dvec3 arriving = guarded(irradiance, sum) + direct;
+        const glm::dvec3 filled = this->arriving(irradiance, sum, e.polygon);
+        if (!(guard_ && sum > 1.0)) balance.filled += e.area * luminance(filled - irradiance);
+        const glm::dvec3 arriving = filled + direct;
         balance.emitted += e.area * luminance(e.emission);
         balance.received += e.area * luminance(arriving);
         balance.absorbed += e.area * luminance((glm::dvec3(1.0) - e.reflectance) * arriving);

@@ -9,6 +9,7 @@
 // no leaf reflects more light than a closed enclosure would send it, so the
 // iteration cannot diverge for reflectance below one.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -84,6 +85,18 @@ class Solver {
                       const std::function<void(int, double)>& progress = {});
     // The energy guard (on by default; off only to show what it prevents).
     void setEnergyGuard(bool on) { guard_ = on; }
+    // The fill (see arriving()): each polygon's closure (solve/Closure.h),
+    // indexed by polygon; empty: no fill.
+    void setClosure(std::vector<float> closure) { closure_ = std::move(closure); }
+    std::vector<float>& closure() { return closure_; }
+    // The most the fill raises what a leaf's links bring: 8%. With 10%,
+    // `furnished-room` absorbed 0.15% more light than it emits; with 8%,
+    // none of the shipped scenes does. A point whose links cover little of
+    // its view and see a light among them is not lit by that light over
+    // what they miss.
+    static constexpr double kMaxFill = 1.08;
+    // Closure from which the fill starts (none below, all from 1).
+    static constexpr double kClosedFrom = 0.95;
     // The largest direct irradiance from punctual lights at any point, per
     // channel: it raises the bound no radiosity can exceed.
     void setDirectBound(const glm::dvec3& bound) { directBound_ = bound; }
@@ -138,9 +151,29 @@ class Solver {
     // form factors sum to one, as every point's do.
     double meanUncovered(const HElement& e) const;
     static Down shareOf(const Down& down, const HElement& child, double meanUncovered);
-    // The leaves' irradiance after the energy guard.
-    glm::dvec3 guarded(const glm::dvec3& irradiance, double formFactorSum) const {
-        return guard_ && formFactorSum > 1.0 ? irradiance / formFactorSum : irradiance;
+    // What arrives at a leaf of input polygon `polygon` from the irradiance
+    // its links (and those above it) bring, their form factors summing to
+    // formFactorSum:
+    //   - the energy guard: above one the sum over-counts the view, and the
+    //     irradiance is divided by it (no point receives more than a closed
+    //     enclosure sends it);
+    //   - the fill: below one the links leave part of the view uncovered
+    //     (their visibility rays and point approximations miss what lies
+    //     between them), and light is lost: 7.4% of what `office` emits,
+    //     most of it on the floor under the furniture, in the bookcases and
+    //     on the desks, whose views its links covered by 0.82 to 0.92 on
+    //     average. Where the polygon's view is closed (no direction leaves
+    //     the scene), the uncovered part sees what the covered part sees on
+    //     average: the irradiance is divided by the sum, by at most
+    //     kMaxFill. Between kClosedFrom and a closed view the fill grows
+    //     from none to all, so that a polygon glimpsing an opening is not
+    //     lit unlike its neighbour.
+    glm::dvec3 arriving(const glm::dvec3& irradiance, double formFactorSum, std::uint32_t polygon) const {
+        if (guard_ && formFactorSum > 1.0) return irradiance / formFactorSum;
+        if (!(formFactorSum > 0.0) || polygon >= closure_.size()) return irradiance;
+        const double closure = closure_[polygon];
+        const double weight = std::clamp((closure - kClosedFrom) / (1.0 - kClosedFrom), 0.0, 1.0);
+        return irradiance * (1.0 + weight * (std::clamp(closure / formFactorSum, 1.0, kMaxFill) - 1.0));
     }
     // Whether every polygon's radiosity is finite and, with the guard, under
     // the bound no solution can exceed (E_max / (1 - rho_max) per channel).
@@ -164,6 +197,7 @@ class Solver {
     Hierarchy& h_;
     LinkStore& links_;
     bool guard_ = true;
+    std::vector<float> closure_;
     std::vector<ElementId> unpushed_;
     glm::dvec3 directBound_{0.0};
 };

@@ -68,8 +68,13 @@ TEST(Light, ClosedScenesKeepTheirLight) {
         // Nothing leaves a closed scene: escaped is measured by rays.
         EXPECT_LT(e.escaped, 0.01 * e.emitted) << scene.sourcePath;
         EXPECT_LT(e.created, 1e-3 * e.emitted) << scene.sourcePath;
-        // What the links lose (measured; README, "Accuracy").
-        EXPECT_LT(std::abs(e.lost), 0.05 * e.emitted) << scene.sourcePath << ": lost " << e.lost / e.emitted;
+        // What the links lose: the fill gives a closed view what its links
+        // leave uncovered (the furnished room lost 3.3% of its light
+        // without it, and loses under 1%; the doorway 1.3%, its dark room
+        // lit through links that its closed door leaves coarse; README,
+        // "Accuracy").
+        EXPECT_GT(e.filled, 0.0) << scene.sourcePath;
+        EXPECT_LT(std::abs(e.lost), 0.02 * e.emitted) << scene.sourcePath << ": lost " << e.lost / e.emitted;
     }
 }
 
@@ -134,8 +139,8 @@ TEST(Light, OverlappingShadowsDarkenNoMoreThanEither) {
 // through the doorway is blocked, and the dark room gets only what constant
 // elements straddling the door's edges pass on. The 1% of the
 // open-door light holds for a door 2 mm in front of the wall (measured
-// 0.68%), against it and in the reveal; a door 2 mm behind the wall, on
-// the dark room's side, is held to 2% (README, "Known limits": 1.25%).
+// 0.63%), against it and in the reveal; a door 2 mm behind the wall, on
+// the dark room's side, is held to 2% (README, "Known limits": 1.24%).
 TEST(Light, ClosedDoorIsLightTight) {
     Scene open = test::doorwayScene(false);
     const glm::dmat4 opened = test::rotationAbout(test::doorHinge(), V(0, 1, 0), 90.0);

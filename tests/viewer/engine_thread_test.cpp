@@ -162,7 +162,12 @@ TEST(EngineThread, UndoOfAnEditGivesEachPolygonItsMaterialBack) {
     EXPECT_NE(after, *materials) << "the edit gave the block copies of its materials in the new colour";
 
     thread.post(EditMaterial{"block", std::nullopt, std::nullopt, *materials});
-    const auto undone = waitFor(thread, [&](const ViewerSnapshot& s) { return *objectNamed(s, "block").materials == *materials; });
+    // Once idle time has sent what the edit's frame left unsent.
+    const auto undone = waitFor(thread, [&](const ViewerSnapshot& s) {
+        const FrameStats& f = s.frame;
+        return *objectNamed(s, "block").materials == *materials &&
+               f.pending + f.stale + f.unsent + f.deferred + f.unmeshed == 0;
+    });
     EXPECT_EQ(*objectNamed(*undone, "block").materials, *materials);
     EXPECT_NEAR(meanColor(*undone->mesh) / before, 1.0, 0.001);
 }

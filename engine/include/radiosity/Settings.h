@@ -40,6 +40,10 @@ struct EngineSettings {
     // more than a closed enclosure would send it (solve/Solver.h). Off only
     // to show what it prevents.
     bool energyGuard = true;
+    // The fill: where a polygon's view is closed, what its links leave
+    // uncovered is lit as what they cover (solve/Solver.h). Off only to
+    // show what it adds.
+    bool fill = true;
 };
 
 // Half of the memory available on this machine (Linux: MemAvailable in
@@ -64,7 +68,7 @@ struct UpdateSettings {
     std::optional<double> deadlineSeconds;
     // Further bounces stop when no element's radiosity moved by more than
     // this fraction of the scene's mean emitted radiosity.
-    double bounceThreshold = 1e-3;
+    double bounceThreshold = 7e-4;
     // While objects move, a change under this larger fraction waits, unsent,
     // for the next frame or idle time, which sends it down to
     // bounceThreshold (edits always bounce to bounceThreshold). Each further
@@ -72,7 +76,7 @@ struct UpdateSettings {
     // 3e-3 a frame makes two thirds of the bounces, and its distance from a
     // full solve moves by under 0.01 point (README, "The update after a
     // move").
-    double moveBounceThreshold = 3e-3;
+    double moveBounceThreshold = 2e-3;
     int maxBounces = 100;
     // Once the change a bounce sends falls by a steady ratio r, each sender
     // sends the change of every bounce to come at once (Aitken's

@@ -19,6 +19,9 @@ namespace rad {
 struct EnergyBalance {
     double emitted = 0.0;    // sum E A
     double received = 0.0;   // sum H A, H the irradiance arriving at front sides
+    // Of `received`, what the fill added where links left a closed view
+    // uncovered (solve/Solver.h, Solver::arriving).
+    double filled = 0.0;
     double absorbed = 0.0;   // sum (1 - rho) H A
     double reflected = 0.0;  // sum rho H A
     // Measured by rays: the light leaving the surfaces (sum B A) that

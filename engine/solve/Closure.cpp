@@ -1,0 +1,84 @@
+#include "solve/Closure.h"
+
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <numbers>
+
+#include "hierarchy/Hierarchy.h"
+
+namespace rad {
+
+namespace {
+
+// Van der Corput's radical inverse of k in base `base`.
+double radicalInverse(std::uint32_t k, std::uint32_t base) {
+    double r = 0.0, f = 1.0 / base;
+    for (; k != 0; k /= base, f /= base) r += f * (k % base);
+    return r;
+}
+
+// The rays' directions in the frame (t, b, n), cosine-weighted: ray k
+// leaves sample point k % 16 (whose 4 rays are a jittered 2 x 2
+// stratification of the disk that maps to the hemisphere, so that no point
+// looks one way only), the jitter of the 16 points a Halton set (bases 2
+// and 3). 64 rays measure a share of 0.8 to about 0.05: an open box's
+// walls read 0.73 to 0.84 (tests/solve/closure_test.cpp).
+const std::array<glm::dvec3, kClosureRays>& localDirections() {
+    static const std::array<glm::dvec3, kClosureRays> directions = [] {
+        std::array<glm::dvec3, kClosureRays> d{};
+        constexpr int kPoints = 16;
+        for (int k = 0; k < kClosureRays; ++k) {
+            const int point = k % kPoints, j = k / kPoints;
+            const auto index = static_cast<std::uint32_t>(point);
+            const double jitterU = radicalInverse(index, 2), jitterV = radicalInverse(index, 3);
+            const double u = ((j & 1) + jitterU) / 2.0, v = ((j >> 1) + jitterV) / 2.0;
+            const double r = std::sqrt(u), phi = 2.0 * std::numbers::pi * v;
+            d[k] = glm::dvec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - u));
+        }
+        return d;
+    }();
+    return directions;
+}
+
+}  // namespace
+
+void measureClosure(const Scene& scene, const RayCaster& rays,
+                    std::span<const std::uint32_t> polygons, std::vector<float>& closure) {
+    closure.resize(scene.polygons.size(), 1.0f);
+    const Aabb bounds = scene.bounds();
+    if (bounds.empty()) return;
+    // Far enough to leave the scene from any of its points.
+    const double reach = 4.0 * glm::length(bounds.extent()) + 1.0;
+    const auto& local = localDirections();
+    tbb::parallel_for(std::size_t(0), polygons.size(), [&](std::size_t i) {
+        const std::uint32_t id = polygons[i];
+        const Polygon& p = scene.polygons[id];
+        const glm::dvec3 n = p.normal();
+        const glm::dvec3 t = glm::normalize(p.vertices[1] - p.vertices[0] -
+                                            n * glm::dot(n, p.vertices[1] - p.vertices[0]));
+        const glm::dvec3 b = glm::cross(n, t);
+        const auto& params = polygonSampleParams(p.vertexCount);
+        int met = 0;
+        std::array<RayCaster::Segment, RayCaster::kMaxSegments> segments;
+        for (int first = 0; first < kClosureRays;
+             first += static_cast<int>(RayCaster::kMaxSegments)) {
+            for (int k = 0; k < static_cast<int>(RayCaster::kMaxSegments); ++k) {
+                const int ray = first + k;
+                const glm::dvec3 from =
+                    polygonPoint(p, params[static_cast<std::size_t>(ray) % params.size()]);
+                const glm::dvec3& l = local[ray];
+                segments[k] = {from, from + reach * (l.x * t + l.y * b + l.z * n), id,
+                               RayCaster::kNoPolygon};
+            }
+            const std::uint16_t hit =
+                rays.blocked(Layer::Static, segments) | rays.blocked(Layer::Dynamic, segments);
+            met += std::popcount(hit);
+        }
+        closure[id] = static_cast<float>(met) / kClosureRays;
+    });
+}
+
+}  // namespace rad
