@@ -57,8 +57,14 @@ void measureClosure(const Scene& scene, const RayCaster& rays,
         const std::uint32_t id = polygons[i];
         const Polygon& p = scene.polygons[id];
         const glm::dvec3 n = p.normal();
-        const glm::dvec3 t = glm::normalize(p.vertices[1] - p.vertices[0] -
-                                            n * glm::dot(n, p.vertices[1] - p.vertices[0]));
+        // The frame's first axis along the polygon's longest edge (a
+        // repeated vertex makes a zero edge), in its plane.
+        glm::dvec3 edge(0.0);
+        for (int k = 0; k < p.vertexCount; ++k) {
+            const glm::dvec3 e = p.vertices[(k + 1) % p.vertexCount] - p.vertices[k];
+            if (glm::dot(e, e) > glm::dot(edge, edge)) edge = e;
+        }
+        const glm::dvec3 t = glm::normalize(edge - n * glm::dot(n, edge));
         const glm::dvec3 b = glm::cross(n, t);
         const auto& params = polygonSampleParams(p.vertexCount);
         int met = 0;

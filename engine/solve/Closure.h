@@ -22,7 +22,7 @@ inline constexpr int kClosureRays = 64;
 // Sets closure[p] for each listed polygon p (closure is sized to the
 // scene's polygons): the share of its rays that meet a polygon of either
 // layer, front or back. The rays are fixed in the polygon's own frame (its
-// normal and first edge), so a polygon carried by a rigid move casts the
+// normal and longest edge), so a polygon carried by a rigid move casts the
 // same rays from where it stands, and its closure is a function of where
 // everything is, not of how it got there.
 void measureClosure(const Scene& scene, const RayCaster& rays,
