@@ -787,8 +787,8 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // closure is measured again where they now stand, with the rays a solve
     // there casts (fixed in each polygon's frame). Other polygons keep
     // theirs (see the README's known limits).
-    std::vector<float>& closure = s.solver.closure();
-    if (std::any_of(closure.begin(), closure.end(), [](float c) { return c < 1.0f; })) {
+    if (!s.solver.allClosed()) {
+        std::vector<float>& closure = s.solver.closure();
         std::vector<std::uint32_t> moved;
         for (const auto& [object, m] : objects) {
             const Object& o = s.scene.objects[object];

@@ -380,7 +380,7 @@ EnergyBalance Solver::energy() const {
     EnergyBalance balance;
     forEachLeaf([&](const HElement& e, const glm::dvec3& irradiance, double sum, const glm::dvec3& direct) {
         const glm::dvec3 filled = this->arriving(irradiance, sum, e.polygon);
-        if (!(guard_ && sum > 1.0)) balance.filled += e.area * luminance(filled - irradiance);
+        balance.filled += e.area * std::max(0.0, luminance(filled - irradiance));
         const glm::dvec3 arriving = filled + direct;
         balance.emitted += e.area * luminance(e.emission);
         balance.received += e.area * luminance(arriving);

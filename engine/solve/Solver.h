@@ -87,8 +87,14 @@ class Solver {
     void setEnergyGuard(bool on) { guard_ = on; }
     // The fill (see arriving()): each polygon's closure (solve/Closure.h),
     // indexed by polygon; empty: no fill.
-    void setClosure(std::vector<float> closure) { closure_ = std::move(closure); }
+    void setClosure(std::vector<float> closure) {
+        closure_ = std::move(closure);
+        allClosed_ = std::all_of(closure_.begin(), closure_.end(), [](float c) { return c >= 1.0f; });
+    }
     std::vector<float>& closure() { return closure_; }
+    // Whether every polygon's view was closed at the solve: then moves
+    // leave every closure at 1 and measure none again.
+    bool allClosed() const { return allClosed_; }
     // The most the fill raises what a leaf's links bring: 8%. With 10%,
     // `furnished-room` absorbed 0.15% more light than it emits; with 8%,
     // none of the shipped scenes does. A point whose links cover little of
@@ -198,6 +204,7 @@ class Solver {
     LinkStore& links_;
     bool guard_ = true;
     std::vector<float> closure_;
+    bool allClosed_ = true;
     std::vector<ElementId> unpushed_;
     glm::dvec3 directBound_{0.0};
 };
