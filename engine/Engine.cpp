@@ -17,6 +17,7 @@
 #include "lights/LightLinks.h"
 #include "links/Link.h"
 #include "refine/Refiner.h"
+#include "refine/Surroundings.h"
 #include "snapshot/Sampling.h"
 #include "solve/Closure.h"
 #include "solve/Diagnosis.h"
@@ -54,6 +55,24 @@ double emittedPower(const Scene& scene) {
     return power;
 }
 
+// The share of the thresholds' references (emitted power, area) a point's
+// surroundings make up (refine/Surroundings.h): 1 for a room (a point sees
+// kRoomShare or more of the scene), less in a building of rooms. Rounded down
+// to a power of two, so that moving an object (which changes the estimate a
+// little) leaves the thresholds of a from-scratch solve where the solve's
+// were.
+double thresholdScale(const Scene& scene, const EngineSettings& settings) {
+    if (!settings.localThresholds || scene.polygons.empty()) return 1.0;
+    RayCaster rays;
+    rays.setFrame(scene.bounds());
+    std::vector<std::uint32_t> all(scene.polygons.size());
+    std::iota(all.begin(), all.end(), 0u);
+    rays.setLayer(Layer::Static, scene, all);
+    const double share = visibleAreaShare(scene, rays);
+    if (!(share > 0.0)) return 1.0;
+    return std::min(1.0, std::exp2(std::floor(std::log2(share / kRoomShare))));
+}
+
 Scene checkedScene(Scene scene) {
     if (!scene.hasEmitter())
         throw SceneError(scene.sourcePath + ": nothing emits light (no material has a positive emissiveFactor "
@@ -67,9 +86,10 @@ struct Engine::State {
     State(Scene s, const EngineSettings& settings)
         : scene(checkedScene(std::move(s))),
           settings(settings),
-          hierarchy(scene, settings.minArea > 0.0 ? settings.minArea : 2e-5 * totalArea(scene)),
+          scale(thresholdScale(scene, settings)),
+          hierarchy(scene, settings.minArea > 0.0 ? settings.minArea : 2e-5 * scale * totalArea(scene)),
           refiner(hierarchy, links, rays,
-                  RefineSettings{settings.epsilon, emittedPower(scene), settings.samplesPerElement,
+                  RefineSettings{settings.epsilon, scale * emittedPower(scene), settings.samplesPerElement,
                                  settings.maxMemoryBytes > 0 ? settings.maxMemoryBytes : defaultMemoryLimit()}),
           solver(hierarchy, links),
           updater(hierarchy, links, refiner, solver, emittedPower(scene) / totalArea(scene)),
@@ -103,6 +123,7 @@ struct Engine::State {
 
     Scene scene;
     EngineSettings settings;
+    double scale;  // thresholdScale
     Hierarchy hierarchy;
     LinkStore links;
     RayCaster rays;
@@ -269,6 +290,7 @@ Engine::Engine(Scene scene, const EngineSettings& settings) {
     s.chooseDynamic(dynamicObject);
     s.stats.polygons = s.scene.polygons.size();
     s.stats.minArea = s.hierarchy.minArea();
+    s.stats.thresholdScale = s.scale;
     s.stats.hierarchySeconds = secondsSince(start);
 }
 
@@ -1029,8 +1051,9 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     // Refinement follows the light the edit changed in steps from the
     // solve's (update/OracleSteps.h), each element by its share of the
     // emitted power: an edit taken back returns to the solve's hierarchy.
-    // The light links of punctual lights judge against the power now.
-    const double power = emittedPower(s.scene);
+    // The light links of punctual lights judge against the power now (in
+    // the scale the solve's thresholds were taken in).
+    const double power = s.scale * emittedPower(s.scene);
     if (power > 0.0) {
         s.updater.setLightScale(s.anchorPower / power);
         s.lightLinks.setThreshold(s.refiner.settings().epsilon * power);

@@ -1,5 +1,6 @@
 #include "cli/EngineOptions.h"
 
+#include <cstdint>
 #include <string>
 
 #include "cli/Args.h"
@@ -7,14 +8,20 @@
 namespace rad::cli {
 
 void addEngineOptions(CLI::App& command, EngineSettings& settings) {
-    command.add_option("--epsilon", settings.epsilon, "BF refinement threshold, relative to the total emitted power")
+    command.add_option("--epsilon", settings.epsilon,
+                       "BF refinement threshold, relative to the total emitted power (of a room's share of it in a "
+                       "scene of many rooms: see --whole-scene-thresholds)")
         ->type_name("E")
         ->check(positiveNumber())
         ->capture_default_str();
     // 0 in the settings means "derive it from the scene", which is no value to type.
-    command.add_option("--min-area", settings.minArea, "area threshold in m^2 (default: 2e-5 of the scene's polygon area)")
+    command.add_option("--min-area", settings.minArea, "area threshold in m^2 (default: 2e-5 of the scene's polygon area, or of a room's share of it)")
         ->type_name("A")
         ->check(positiveNumber());
+    command.add_flag(
+        "--whole-scene-thresholds", [&settings](std::int64_t) { settings.localThresholds = false; },
+        "epsilon and the default area threshold relative to the whole scene, even where a point sees only a room of "
+        "it (by default a building's rooms are each refined as alone)");
     command.add_option("--max-iterations", settings.solve.maxIterations,
                        "gather/push-pull sweeps per round before giving up")
         ->type_name("N")

@@ -47,6 +47,7 @@ Report makeReport(const SolveSettings& s, const Engine& engine, const ImportNote
         {"scene", s.scene},
         {"epsilon", s.engine.epsilon},
         {"min_area", st.minArea},
+        {"threshold_scale", st.thresholdScale},
         {"polygons", st.polygons},
         {"elements", st.elements},
         {"links", st.links},

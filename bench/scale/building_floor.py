@@ -46,9 +46,9 @@ def main():
                                      os.path.join(tmp, 'floor.json'), args.floor_args.split())
         e = floor['energy']
         print('building-floor: %d polygons, %d links, %d p-links, solve %.1f s (wall %.1f s), peak memory %.2f GB, '
-              'engine memory %.2f GB, converged %s' % (
+              'engine memory %.2f GB, converged %s, threshold scale %g' % (
                   floor['polygons'], floor['links'], floor['passive_links'], floor['seconds']['total'], seconds,
-                  peak / 1e9, floor['memory_bytes']['total'] / 1e9, floor['converged']))
+                  peak / 1e9, floor['memory_bytes']['total'] / 1e9, floor['converged'], floor['threshold_scale']))
         print('building-floor energy: lost %.2f%%, escaped %.2f%%, back faces %.2f%% of the emitted power' % (
             100 * e['lost'] / e['emitted'], 100 * e['escaped'] / e['emitted'], 100 * e['back_faces'] / e['emitted']))
         single, _, _ = solve(args.cli, alone, os.path.join(tmp, 'alone.json'))

@@ -71,6 +71,10 @@ struct SolveStats {
     double refineSeconds = 0.0;
     double solveSeconds = 0.0;
     double minArea = 0.0;
+    // The share of the scene's emitted power and area the thresholds are
+    // relative to (EngineSettings::localThresholds): 1, or a power of two
+    // below it in a scene of many rooms.
+    double thresholdScale = 1.0;
     MemoryStats memory;
     EnergyBalance energy;
 };
