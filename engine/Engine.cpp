@@ -169,7 +169,7 @@ struct Engine::State {
             const double left = std::max(0.0, *deadlineSeconds - f.totalSeconds - meshCost.model().first);
             stop = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(left));
         }
-        f.unmeshed = makeRadiositySnapshot(scene, hierarchy, mesh, meshParts, stop);
+        f.unmeshed = makeRadiositySnapshot(scene, hierarchy, mesh, meshParts, stop, &hierarchy.meshTouched());
         meshValid = true;
         f.snapshotSeconds = secondsSince(start);
         f.totalSeconds += f.snapshotSeconds;
@@ -661,7 +661,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     // drag then meshes again only what it changed (the building floor's
     // whole mesh takes 0.25 s, which its first frame paid). Not a frame:
     // the mesh's cost model is left to the frames.
-    makeRadiositySnapshot(s.scene, s.hierarchy, s.mesh, s.meshParts, std::nullopt);
+    makeRadiositySnapshot(s.scene, s.hierarchy, s.mesh, s.meshParts, std::nullopt, &s.hierarchy.meshTouched());
     s.meshValid = true;
     s.updater.prepare();
     // First guess of a further bounce's cost, until a frame makes one: a
@@ -1041,6 +1041,7 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
                 stack.pop_back();
                 s.hierarchy[el].emission = m.emission;
                 s.hierarchy[el].reflectance = surfaceReflectance(s.scene, p, s.hierarchy[el].corners());
+                s.hierarchy.touchMesh(p);
                 for (ElementId c : s.hierarchy[el].children) stack.push_back(c);
             }
         }
@@ -1089,6 +1090,8 @@ MemoryStats Engine::memory() const {
 std::size_t Engine::linkCount() const { return state_->links.liveCount(); }
 
 RadiositySamples Engine::samples() const { return sampleRadiosity(state_->scene, state_->hierarchy); }
+
+MeshSnapshot Engine::snapshotFromScratch() const { return makeRadiositySnapshot(state_->scene, state_->hierarchy); }
 
 MeshSnapshot Engine::snapshot(SnapshotOverlays overlays) const {
     MeshSnapshot mesh = state_->meshValid ? state_->mesh : makeRadiositySnapshot(state_->scene, state_->hierarchy);

@@ -123,7 +123,8 @@ const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount) {
 }
 
 Hierarchy::Hierarchy(const Scene& scene, double minArea)
-    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), objectClusters_(scene.objects.size(), kNone), minArea_(minArea) {
+    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), meshTouched_(scene.polygons.size(), 1),
+      objectClusters_(scene.objects.size(), kNone), minArea_(minArea) {
     std::vector<std::uint32_t> dynamicObjects, staticObjects;
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
         if (scene.objects[o].polygonCount == 0) continue;
@@ -248,10 +249,12 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
     e.emission = m.emission;
     const ElementId id = add(std::move(e), bounds);
     polygonElements_[polygon] = id;
+    meshTouched_[polygon] = 1;
     return id;
 }
 
 void Hierarchy::release(ElementId id) {
+    if (elements_[id].isSurface()) meshTouched_[elements_[id].polygon] = 1;
     if (elements_[id].shape != kNone) freeShapes_.push_back(elements_[id].shape);
     elements_[id] = HElement{};
     bounds_[id] = ElementBounds{};
@@ -459,10 +462,11 @@ void Hierarchy::subdivide(ElementId id) {
         kids.push_back(add(std::move(c), ElementBounds{quadtreeChildRange(parentRange, k), Aabb{}}));
     }
     elements_[id].children = kids;
-    updateGeometry(id);
+    updateGeometry(id);  // touches the polygon's mesh
 }
 
 void Hierarchy::removeChildren(ElementId id) {
+    if (elements_[id].isSurface()) touchMesh(elements_[id].polygon);
     std::vector<ElementId> stack = std::move(elements_[id].children);
     elements_[id].children.clear();
     while (!stack.empty()) {
@@ -494,6 +498,7 @@ void Hierarchy::updateGeometry(ElementId id) {
         box = Aabb{};
         for (int i = 0; i < e.patch.n; ++i) box.extend(e.patch.v[i]);
         e.center = patchCentroid(e.patch);
+        meshTouched_[e.polygon] = 1;  // the same polygon from one thread only: disjoint subtrees
     }
     // The subtrees are disjoint: a moved object's clusters, whose
     // orientation is rebuilt, on all cores.

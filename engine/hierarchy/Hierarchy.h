@@ -5,6 +5,8 @@
 // move (paper sec. 3.3); polygons subdivided into quadtrees on demand during
 // refinement.
 
+#include <algorithm>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -48,6 +50,14 @@ public:
     // The surface element of each input polygon (quadtree root).
     ElementId polygonElement(std::uint32_t polygon) const { return polygonElements_[polygon]; }
     std::size_t polygonCount() const { return polygonElements_.size(); }
+    // Which polygons' meshes may have changed since the snapshot last looked
+    // (its leaves, their corners or their radiosity): set here by every
+    // subdivision, removal and move, and by the solver for the leaves whose
+    // radiosity it changes; read and cleared by makeRadiositySnapshot, so
+    // that a frame hashes only these polygons' leaves, not every leaf.
+    void touchMesh(std::uint32_t polygon) { meshTouched_[polygon] = 1; }
+    void touchAllMeshes() { std::fill(meshTouched_.begin(), meshTouched_.end(), std::uint8_t(1)); }
+    std::vector<std::uint8_t>& meshTouched() { return meshTouched_; }
     // The cluster holding all of one object's polygons.
     ElementId objectCluster(std::uint32_t object) const { return objectClusters_[object]; }
     // The object clusters right under the root: those that can move without
@@ -143,6 +153,7 @@ private:
     std::vector<ClusterShape> shapes_;
     std::vector<std::uint32_t> freeShapes_;
     std::vector<ElementId> polygonElements_;
+    std::vector<std::uint8_t> meshTouched_;  // per polygon (touchMesh)
     std::vector<ElementId> objectClusters_;
     std::vector<ElementId> movable_;
     ElementId root_ = kNone;

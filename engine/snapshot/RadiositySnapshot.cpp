@@ -506,7 +506,8 @@ MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarch
 }
 
 std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh, SnapshotCache& cache,
-                                  std::optional<std::chrono::steady_clock::time_point> stop) {
+                                  std::optional<std::chrono::steady_clock::time_point> stop,
+                                  std::vector<std::uint8_t>* touched) {
     // Polygons are meshed independently, on all cores; a polygon whose
     // signature is unchanged keeps its part. The parts are joined in polygon
     // order (the same mesh as one core makes from scratch).
@@ -520,9 +521,13 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
         Scratch scratch;
         for (std::size_t p = r.begin(); p < r.end(); ++p) {
             SnapshotCache::Part& part = cache.parts[p];
+            if (touched && part.valid && !(*touched)[p]) continue;
             const ElementId top = hierarchy.polygonElement(static_cast<std::uint32_t>(p));
             const std::uint64_t signature = top == kNone ? 0 : polygonSignature(hierarchy, top, scratch.leaves);
-            if (part.valid && part.signature == signature) continue;
+            if (part.valid && part.signature == signature) {
+                if (touched) (*touched)[p] = 0;
+                continue;
+            }
             // Past the stop, a polygon already meshed once waits for a later
             // frame (at least kLeastRemeshed a call go ahead: progress).
             // A part whose leaves changed in number changes size, and the
@@ -553,6 +558,7 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
             part.signature = signature;
             part.valid = true;
             remeshed[p] = 1;
+            if (touched) (*touched)[p] = 0;
         }
     });
     // Nothing re-meshed: the mesh assembled last time stands (a frame that

@@ -70,8 +70,13 @@ struct SnapshotCache {
 // their last mesh (they are drawn with their last light) rather than being
 // meshed again, but never before kLeastRemeshed of them were; a later call
 // meshes them. Returns how many polygons it left so.
+// With `touched` (Hierarchy::meshTouched, per polygon): only the polygons
+// marked there (and those never meshed) are looked at; each is unmarked once
+// its part matches its leaves again, and stays marked when the stop leaves
+// it. Without: every polygon's leaves are hashed.
 inline constexpr std::size_t kLeastRemeshed = 32;
 std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy, MeshSnapshot& mesh, SnapshotCache& cache,
-                                  std::optional<std::chrono::steady_clock::time_point> stop = std::nullopt);
+                                  std::optional<std::chrono::steady_clock::time_point> stop = std::nullopt,
+                                  std::vector<std::uint8_t>* touched = nullptr);
 
 }  // namespace rad

@@ -139,6 +139,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
         const Down here = surfaceDown(id, down);
         if (e.isLeaf()) {
             b = e.emission + e.reflectance * (arriving(here.irradiance, here.formFactorSum, e.polygon) + here.direct);
+            if (b != e.radiosity) h_.touchMesh(e.polygon);
             walk.change += e.area * std::abs(luminance(b - e.radiosity));
             walk.total += e.area * std::abs(luminance(b));
             e.peak = luminance(b);
@@ -256,6 +257,7 @@ void Solver::extrapolate(const std::vector<glm::dvec3>& before, const glm::dvec3
         HElement& e = h_[id];
         e.radiosity = glm::clamp(e.radiosity + factor * (e.radiosity - before[id]), glm::dvec3(0.0), bound);
     }
+    h_.touchAllMeshes();
     if (!h_[h_.root()].isSurface()) pullClusterPowers(h_.root());
 }
 

@@ -138,6 +138,10 @@ public:
     // (yellow lines between the centres of their H-elements) and the outlines
     // of the elements it marked changed (red), in MeshSnapshot's lines.
     MeshSnapshot snapshot(SnapshotOverlays overlays = {}) const;
+    // The lit mesh made anew from the current solution, every polygon
+    // meshed: what snapshot() builds frame by frame from the polygons that
+    // changed must equal it, once no polygon waits (FrameStats::unmeshed).
+    MeshSnapshot snapshotFromScratch() const;
 
     // The object whose surface a ray meets first (for picking), or nullopt.
     std::optional<std::uint32_t> pick(const glm::dvec3& origin, const glm::dvec3& direction) const;
