@@ -24,7 +24,8 @@ double radicalInverse(std::uint32_t k, std::uint32_t base) {
 double visibleAreaShare(const Scene& scene, const RayCaster& rays) {
     std::vector<double> cumulative(scene.polygons.size());
     double total = 0.0;
-    for (std::size_t p = 0; p < scene.polygons.size(); ++p) cumulative[p] = total += scene.polygons[p].area();
+    for (std::size_t p = 0; p < scene.polygons.size(); ++p)
+        cumulative[p] = total += scene.polygons[p].area();
     const Aabb bounds = scene.bounds();
     if (!(total > 0.0) || bounds.empty()) return 1.0;
     const double reach = 4.0 * glm::length(bounds.extent()) + 1.0;
@@ -33,7 +34,8 @@ double visibleAreaShare(const Scene& scene, const RayCaster& rays) {
         // The point: area-weighted, stratified over the polygons' running area.
         const double u = (k + 0.5) / kSurroundingsPoints * total;
         const std::size_t id = std::min<std::size_t>(
-            std::lower_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin(), scene.polygons.size() - 1);
+            std::lower_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin(),
+            scene.polygons.size() - 1);
         const Polygon& p = scene.polygons[id];
         const auto& params = polygonSampleParams(p.vertexCount);
         const glm::dvec3 x = polygonPoint(p, params[static_cast<std::size_t>(k) % params.size()]);
@@ -44,13 +46,15 @@ double visibleAreaShare(const Scene& scene, const RayCaster& rays) {
         for (int j = 0; j < kSurroundingsRays; ++j) {
             const auto index = static_cast<std::uint32_t>(k * kSurroundingsRays + j);
             // Uniform over the hemisphere: cos theta uniform in (0, 1].
-            const double z = 1.0 - radicalInverse(index, 2), phi = 2.0 * std::numbers::pi * radicalInverse(index, 3);
+            const double z = 1.0 - radicalInverse(index, 2),
+                         phi = 2.0 * std::numbers::pi * radicalInverse(index, 3);
             const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
             const glm::dvec3 d = s * std::cos(phi) * t + s * std::sin(phi) * b + z * n;
             // Leave the point's own polygon (coincident starts would meet it).
             const auto hit = rays.intersect(x + 1e-6 * glm::length(bounds.extent()) * n, d, reach);
             if (!hit) continue;
-            const double c = std::max(0.2, std::abs(glm::dot(scene.polygons[hit->polygon].normal(), d)));
+            const double c =
+                std::max(0.2, std::abs(glm::dot(scene.polygons[hit->polygon].normal(), d)));
             area += 2.0 * std::numbers::pi * hit->t * hit->t / c;
         }
         seen[static_cast<std::size_t>(k)] = area / kSurroundingsRays;

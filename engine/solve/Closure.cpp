@@ -98,7 +98,9 @@ void measureClosure(const Scene& scene, const RayCaster& rays,
                 const glm::dvec3& l = local[first + k];
                 const glm::dvec3 turned = glm::normalize(l + kSeamTurn * glm::dvec3(1.0, 1.0, 0.0));
                 const glm::dvec3& from = segments[k].from;
-                again[left++] = {from, from + reach * (turned.x * t + turned.y * b + turned.z * normal), id, RayCaster::kNoPolygon};
+                again[left++] = {from,
+                                 from + reach * (turned.x * t + turned.y * b + turned.z * normal),
+                                 id, RayCaster::kNoPolygon};
             }
             if (left > 0) {
                 const std::span<const RayCaster::Segment> retry(again.data(), left);

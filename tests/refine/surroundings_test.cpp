@@ -2,6 +2,8 @@
 // thresholds taken relative to it (EngineSettings::localThresholds): a row of
 // closed rooms is refined in each room about as the room alone is.
 
+#include "refine/Surroundings.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 
 #include "geometry/RayCaster.h"
 #include "radiosity/Engine.h"
-#include "refine/Surroundings.h"
 #include "support/Motion.h"
 #include "support/TestScenes.h"
 
@@ -65,14 +66,16 @@ TEST(Surroundings, APointInAClosedBoxSeesTheOtherFaces) {
 TEST(Surroundings, RoomsSideBySideEachSeeTheirOwn) {
     const double one = shareOf(rowOfRooms(1));
     EXPECT_GT(one, 0.5);
-    for (int count : {2, 8}) EXPECT_NEAR(shareOf(rowOfRooms(count)) * count, one, 0.1 * one) << count << " rooms";
+    for (int count : {2, 8})
+        EXPECT_NEAR(shareOf(rowOfRooms(count)) * count, one, 0.1 * one) << count << " rooms";
 }
 
 TEST(LocalThresholds, ARoomIsRefinedAsItWasAlone) {
     const EngineSettings settings;
     Engine alone(rowOfRooms(1), settings);
     ASSERT_TRUE(alone.solve().converged);
-    EXPECT_EQ(alone.stats().thresholdScale, 1.0) << "a single room keeps the whole scene's thresholds";
+    EXPECT_EQ(alone.stats().thresholdScale, 1.0)
+        << "a single room keeps the whole scene's thresholds";
     constexpr int kRooms = 8;
     Engine row(rowOfRooms(kRooms), settings);
     ASSERT_TRUE(row.solve().converged);
@@ -83,7 +86,8 @@ TEST(LocalThresholds, ARoomIsRefinedAsItWasAlone) {
     EXPECT_EQ(coarse.stats().thresholdScale, 1.0);
     // The row's thresholds: its share over a room's, rounded down to a
     // power of two.
-    const double scale = row.stats().thresholdScale, share = shareOf(rowOfRooms(kRooms)) / kRoomShare;
+    const double scale = row.stats().thresholdScale,
+                 share = shareOf(rowOfRooms(kRooms)) / kRoomShare;
     EXPECT_LE(scale, share);
     EXPECT_GT(scale, 0.5 * share);
     // Links per room: near the room alone's, where the whole scene's
@@ -96,7 +100,8 @@ TEST(LocalThresholds, ARoomIsRefinedAsItWasAlone) {
     // "room-k-NAME" -> NAME
     const auto part = [](const std::string& name) { return name.substr(name.find('-', 5) + 1); };
     std::map<std::string, double> reference;
-    for (const ObjectRadiosity& o : alone.objectRadiosity()) reference[part(o.name)] = luminance(o.radiosity);
+    for (const ObjectRadiosity& o : alone.objectRadiosity())
+        reference[part(o.name)] = luminance(o.radiosity);
     const auto worst = [&](const Engine& e) {
         double w = 0.0;
         for (const ObjectRadiosity& o : e.objectRadiosity()) {

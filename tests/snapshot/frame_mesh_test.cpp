@@ -24,7 +24,8 @@ TEST(FrameMesh, FramesKeepTheMeshMadeFromScratch) {
     Engine engine(test::roomWithBlock(), test::coarse());
     ASSERT_TRUE(engine.solve().converged);
     expectMadeFromScratch(engine, "the solve");
-    const glm::dmat4 start = engine.scene().objects[test::objectIndex(engine, "block")].worldFromLocal;
+    const glm::dmat4 start =
+        engine.scene().objects[test::objectIndex(engine, "block")].worldFromLocal;
     for (int f = 1; f <= 3; ++f) {
         engine.moveDynamicObject(test::translation(glm::dvec3(0.2 * f, 0.0, 0.1 * f)) * start);
         expectMadeFromScratch(engine, "a move");
