@@ -56,21 +56,16 @@ double emittedPower(const Scene& scene) {
 }
 
 // The share of the thresholds' references (emitted power, area) a point's
-// surroundings make up (refine/Surroundings.h): 1 for a room (a point sees
-// kRoomShare or more of the scene), less in a building of rooms. Rounded down
-// to a power of two, so that moving an object (which changes the estimate a
-// little) leaves the thresholds of a from-scratch solve where the solve's
-// were.
-double thresholdScale(const Scene& scene, const EngineSettings& settings) {
+// surroundings make up (refine/Surroundings.h), measured with the scene's
+// own rays before the hierarchy is built.
+double localThresholdScale(const Scene& scene, const EngineSettings& settings) {
     if (!settings.localThresholds || scene.polygons.empty()) return 1.0;
     RayCaster rays;
     rays.setFrame(scene.bounds());
     std::vector<std::uint32_t> all(scene.polygons.size());
     std::iota(all.begin(), all.end(), 0u);
     rays.setLayer(Layer::Static, scene, all);
-    const double share = visibleAreaShare(scene, rays);
-    if (!(share > 0.0)) return 1.0;
-    return std::min(1.0, std::exp2(std::floor(std::log2(share / kRoomShare))));
+    return thresholdScale(measureSurroundings(scene, rays));
 }
 
 Scene checkedScene(Scene scene) {
@@ -86,7 +81,7 @@ struct Engine::State {
     State(Scene s, const EngineSettings& settings)
         : scene(checkedScene(std::move(s))),
           settings(settings),
-          scale(thresholdScale(scene, settings)),
+          scale(localThresholdScale(scene, settings)),
           hierarchy(scene, settings.minArea > 0.0 ? settings.minArea : 2e-5 * scale * totalArea(scene)),
           refiner(hierarchy, links, rays,
                   RefineSettings{settings.epsilon, scale * emittedPower(scene), settings.samplesPerElement,
@@ -123,7 +118,7 @@ struct Engine::State {
 
     Scene scene;
     EngineSettings settings;
-    double scale;  // thresholdScale
+    double scale;  // localThresholdScale
     Hierarchy hierarchy;
     LinkStore links;
     RayCaster rays;

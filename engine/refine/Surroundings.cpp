@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hierarchy/Hierarchy.h"
+#include "radiosity/Settings.h"
 
 namespace rad {
 
@@ -21,15 +22,16 @@ double radicalInverse(std::uint32_t k, std::uint32_t base) {
 
 }  // namespace
 
-double visibleAreaShare(const Scene& scene, const RayCaster& rays) {
+Surroundings measureSurroundings(const Scene& scene, const RayCaster& rays) {
     std::vector<double> cumulative(scene.polygons.size());
     double total = 0.0;
     for (std::size_t p = 0; p < scene.polygons.size(); ++p)
         cumulative[p] = total += scene.polygons[p].area();
     const Aabb bounds = scene.bounds();
-    if (!(total > 0.0) || bounds.empty()) return 1.0;
+    if (!(total > 0.0) || bounds.empty()) return {};
     const double reach = 4.0 * glm::length(bounds.extent()) + 1.0;
     std::vector<double> seen(kSurroundingsPoints, 0.0);
+    std::vector<int> escaped(kSurroundingsPoints, 0);
     tbb::parallel_for(0, kSurroundingsPoints, [&](int k) {
         // The point: area-weighted, stratified over the polygons' running area.
         const double u = (k + 0.5) / kSurroundingsPoints * total;
@@ -52,7 +54,10 @@ double visibleAreaShare(const Scene& scene, const RayCaster& rays) {
             const glm::dvec3 d = s * std::cos(phi) * t + s * std::sin(phi) * b + z * n;
             // Leave the point's own polygon (coincident starts would meet it).
             const auto hit = rays.intersect(x + 1e-6 * glm::length(bounds.extent()) * n, d, reach);
-            if (!hit) continue;
+            if (!hit) {
+                ++escaped[static_cast<std::size_t>(k)];
+                continue;
+            }
             const double c =
                 std::max(0.2, std::abs(glm::dot(scene.polygons[hit->polygon].normal(), d)));
             area += 2.0 * std::numbers::pi * hit->t * hit->t / c;
@@ -60,9 +65,19 @@ double visibleAreaShare(const Scene& scene, const RayCaster& rays) {
         seen[static_cast<std::size_t>(k)] = area / kSurroundingsRays;
     });
     double mean = 0.0;
-    for (double s : seen) mean += s;
+    int left = 0;
+    for (std::size_t k = 0; k < seen.size(); ++k) {
+        mean += seen[k];
+        left += escaped[k];
+    }
     mean /= kSurroundingsPoints;
-    return std::clamp(mean / total, 0.0, 1.0);
+    return {std::clamp(mean / total, 0.0, 1.0),
+            double(left) / (double(kSurroundingsPoints) * kSurroundingsRays)};
+}
+
+double thresholdScale(const Surroundings& surroundings) {
+    if (surroundings.escapedShare > kOpenShare || !(surroundings.visibleShare > 0.0)) return 1.0;
+    return std::min(1.0, std::exp2(std::floor(std::log2(surroundings.visibleShare / kRoomShare))));
 }
 
 }  // namespace rad

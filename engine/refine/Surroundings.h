@@ -18,12 +18,31 @@ namespace rad {
 inline constexpr int kSurroundingsPoints = 4096;
 inline constexpr int kSurroundingsRays = 4;  // per point
 
-// The share, in [0, 1], estimated from kSurroundingsPoints x
-// kSurroundingsRays nearest hits: a ray from x meeting a surface at distance
-// d, at an angle theta to its normal, stands for 2 pi d^2 / |cos theta| of
-// visible area (uniform hemisphere sampling), |cos theta| at least 0.2 (a
-// grazing hit stands for no more than five times its head-on area). `rays`
-// holds the scene's polygons (either layer).
-double visibleAreaShare(const Scene& scene, const RayCaster& rays);
+struct Surroundings {
+    // The share, in [0, 1], estimated from kSurroundingsPoints x
+    // kSurroundingsRays nearest hits: a ray from x meeting a surface at
+    // distance d, at an angle theta to its normal, stands for
+    // 2 pi d^2 / |cos theta| of visible area (uniform hemisphere sampling),
+    // |cos theta| at least 0.2 (a grazing hit stands for no more than five
+    // times its head-on area).
+    double visibleShare = 1.0;
+    // The share of those rays that met nothing: they left the scene.
+    double escapedShare = 0.0;
+};
+// `rays` holds the scene's polygons (either layer).
+Surroundings measureSurroundings(const Scene& scene, const RayCaster& rays);
+
+// A scene whose points see the sky in more than this share of their rays
+// is open: what they see little of is not a room around them (a ground
+// plane 100 m wide with a box on it: each point sees 0.09% of the scene),
+// and its thresholds stay the whole scene's.
+inline constexpr double kOpenShare = 0.2;
+
+// The thresholds' scale (EngineSettings::localThresholds): 1 for an open
+// scene or a room (its points see kRoomShare or more of it); else the
+// visible share over kRoomShare, rounded down to a power of two, so that
+// moving an object (which changes the estimate a little) leaves the
+// thresholds of a from-scratch solve where the solve's were.
+double thresholdScale(const Surroundings& surroundings);
 
 }  // namespace rad

@@ -45,14 +45,16 @@ Scene rowOfRooms(int count) {
     return row;
 }
 
-double shareOf(const Scene& scene) {
+Surroundings surroundingsOf(const Scene& scene) {
     RayCaster rays;
     rays.setFrame(scene.bounds());
     std::vector<std::uint32_t> all(scene.polygons.size());
     for (std::uint32_t p = 0; p < all.size(); ++p) all[p] = p;
     rays.setLayer(Layer::Static, scene, all);
-    return visibleAreaShare(scene, rays);
+    return measureSurroundings(scene, rays);
 }
+
+double shareOf(const Scene& scene) { return surroundingsOf(scene).visibleShare; }
 
 // A point on a face of a closed cube sees the other five faces: 5/6 of the
 // area (a little less: a grazing hit counts for at most five times its
@@ -68,6 +70,28 @@ TEST(Surroundings, RoomsSideBySideEachSeeTheirOwn) {
     EXPECT_GT(one, 0.5);
     for (int count : {2, 8})
         EXPECT_NEAR(shareOf(rowOfRooms(count)) * count, one, 0.1 * one) << count << " rooms";
+}
+
+// A ground plane 100 m wide with a box and a lamp on it: a point sees
+// little of the scene because it sees the sky, not because walls close it
+// in. Its thresholds stay the whole scene's (they would be 256 times finer).
+TEST(Surroundings, AnOpenSceneKeepsTheWholeScenesThresholds) {
+    using V = glm::dvec3;
+    Scene s;
+    const auto grey = test::addMaterial(s, V(0.5), V(0.0), "grey");
+    const auto lamp = test::addMaterial(s, V(0.0), V(10.0), "lamp");
+    test::addQuadObject(s, "ground", grey,
+                        {{V(-50, 0, -50), V(-50, 0, 50), V(50, 0, 50), V(50, 0, -50)}});
+    test::addQuadObject(s, "box", grey, test::boxFaces(V(0.0), V(1.0), false));
+    test::addQuadObject(s, "lamp", lamp, {{V(0, 3, 0), V(1, 3, 0), V(1, 3, 1), V(0, 3, 1)}});
+    const Surroundings open = surroundingsOf(s);
+    EXPECT_LT(open.visibleShare, 0.01);
+    EXPECT_GT(open.escapedShare, kOpenShare);
+    EXPECT_EQ(thresholdScale(open), 1.0);
+    // Closed rooms leave nothing: their share decides.
+    const Surroundings row = surroundingsOf(rowOfRooms(8));
+    EXPECT_EQ(row.escapedShare, 0.0);
+    EXPECT_LT(thresholdScale(row), 1.0);
 }
 
 TEST(LocalThresholds, ARoomIsRefinedAsItWasAlone) {

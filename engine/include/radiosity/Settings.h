@@ -32,11 +32,12 @@ struct EngineSettings {
     // polygon area, so that the default suits any scene scale.
     double minArea = 0.0;
     // Thresholds relative to a room, not to the whole scene: where a point
-    // sees less than kRoomShare of the scene's area (visibleAreaShare, in
+    // sees less than kRoomShare of the scene's area (measureSurroundings, in
     // refine/Surroundings.h), epsilon's reference power and the default area
     // threshold are scaled by that share over kRoomShare, rounded down to a
     // power of two. A building of 60 rooms is then refined in each room as
-    // the room alone would be, not 60 times more coarsely.
+    // the room alone would be, not 60 times more coarsely. A scene open to
+    // the sky (kOpenShare of the rays leave it) keeps the whole scene's.
     bool localThresholds = true;
     SolveSettings solve;
     int maxRefineRounds = 16;  // refine / solve rounds before giving up
