@@ -43,6 +43,7 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
     EXPECT_EQ(json.at("scene"), kCornell);
     EXPECT_EQ(jsonAt(json, "/epsilon"), EngineSettings{}.epsilon);  // the default
     EXPECT_GT(jsonAt(json, "/min_area"), 0.0);
+    EXPECT_EQ(jsonAt(json, "/threshold_scale"), 1.0);  // one box, open in front: the whole scene's thresholds
     for (const char* key : {"/polygons", "/elements", "/links", "/passive_links", "/iterations", "/refine_rounds"}) {
         EXPECT_TRUE(jsonAt(json, key).is_number_integer()) << key;
         EXPECT_GT(jsonAt(json, key), 0) << key;
