@@ -799,6 +799,11 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         boxes.insert(boxes.end(), {before, s.scene.objectBounds(object)});
     }
     s.rays.commitInstances();
+    std::vector<std::uint32_t> moved;  // the moved objects' polygons
+    for (const auto& [object, m] : objects) {
+        const Object& o = s.scene.objects[object];
+        for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) moved.push_back(p);
+    }
     // The fill follows a moved object's polygons where the scene is not
     // closed (in a closed one every polygon's view stays closed): their
     // closure is measured again where they now stand, with the rays a solve
@@ -806,11 +811,6 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // theirs (see the README's known limits).
     if (!s.solver.allClosed()) {
         std::vector<float>& closure = s.solver.closure();
-        std::vector<std::uint32_t> moved;
-        for (const auto& [object, m] : objects) {
-            const Object& o = s.scene.objects[object];
-            for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) moved.push_back(p);
-        }
         std::vector<float> before(moved.size());
         for (std::size_t i = 0; i < moved.size(); ++i) before[i] = closure[moved[i]];
         measureClosure(s.scene, s.rays, moved, closure);
@@ -824,12 +824,8 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // refine in it waits, pending, linked coarser.
     if (!s.scene.lights.empty()) {
         const auto lightDeadline = s.lightDeadline(start, settings, choosingSeconds);
-        std::vector<std::uint32_t> relinked;
+        std::vector<std::uint32_t> relinked = moved;
         for (std::uint32_t p : s.lightLinks.shadedBy(boxes)) relinked.push_back(p);
-        for (const auto& [object, m] : objects) {
-            const Object& o = s.scene.objects[object];
-            for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) relinked.push_back(p);
-        }
         std::sort(relinked.begin(), relinked.end());
         relinked.erase(std::unique(relinked.begin(), relinked.end()), relinked.end());
         std::vector<ElementId> changed = s.lightLinks.relink(relinked, std::nullopt, lightDeadline);
@@ -1029,6 +1025,7 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
             const ElementId top = s.hierarchy.polygonElement(p);
             if (top == kNone) continue;
             changed.push_back(top);
+            s.hierarchy.touchMesh(p);  // its mesh's colours come from the leaves' reflectance too
             // Every element of its quadtree: the leaves reflect, and children
             // made later copy their parent's.
             for (std::vector<ElementId> stack{top}; !stack.empty();) {
@@ -1036,7 +1033,6 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
                 stack.pop_back();
                 s.hierarchy[el].emission = m.emission;
                 s.hierarchy[el].reflectance = surfaceReflectance(s.scene, p, s.hierarchy[el].corners());
-                s.hierarchy.touchMesh(p);
                 for (ElementId c : s.hierarchy[el].children) stack.push_back(c);
             }
         }

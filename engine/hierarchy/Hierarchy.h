@@ -30,6 +30,14 @@ glm::dvec3 surfaceReflectance(const Scene& scene, std::uint32_t polygon, const s
 // cell centres on quads, the centroids of the 16 sub-triangles of a 4-level
 // split on triangles.
 const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount);
+// Van der Corput's radical inverse of k in base `base`, in [0, 1): with bases
+// 2 and 3, the Halton points the fixed ray sets are jittered by
+// (solve/Closure.cpp, refine/Surroundings.cpp).
+inline double radicalInverse(std::uint32_t k, std::uint32_t base) {
+    double r = 0.0, f = 1.0 / base;
+    for (; k != 0; k /= base, f /= base) r += f * (k % base);
+    return r;
+}
 
 class Hierarchy {
 public:

@@ -12,16 +12,6 @@
 
 namespace rad {
 
-namespace {
-
-double radicalInverse(std::uint32_t k, std::uint32_t base) {
-    double r = 0.0, f = 1.0 / base;
-    for (; k != 0; k /= base, f /= base) r += f * (k % base);
-    return r;
-}
-
-}  // namespace
-
 Surroundings measureSurroundings(const Scene& scene, const RayCaster& rays) {
     std::vector<double> cumulative(scene.polygons.size());
     double total = 0.0;

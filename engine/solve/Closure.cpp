@@ -17,13 +17,6 @@ namespace {
 // millimetre at a metre.
 constexpr double kSeamTurn = 1e-3;
 
-// Van der Corput's radical inverse of k in base `base`.
-double radicalInverse(std::uint32_t k, std::uint32_t base) {
-    double r = 0.0, f = 1.0 / base;
-    for (; k != 0; k /= base, f /= base) r += f * (k % base);
-    return r;
-}
-
 // The rays' directions in the frame (t, b, n), cosine-weighted: ray k
 // leaves sample point k % 16 (whose 4 rays are a jittered 2 x 2
 // stratification of the disk that maps to the hemisphere, so that no point
@@ -71,6 +64,11 @@ void measureClosure(const Scene& scene, const RayCaster& rays,
         const glm::dvec3 t = glm::normalize(edge - normal * glm::dot(normal, edge));
         const glm::dvec3 b = glm::cross(normal, t);
         const auto& params = polygonSampleParams(p.vertexCount);
+        // The segment from `from` out of the scene along a local direction.
+        const auto outward = [&](const glm::dvec3& from, const glm::dvec3& l) {
+            return RayCaster::Segment{from, from + reach * (l.x * t + l.y * b + l.z * normal), id,
+                                      RayCaster::kNoPolygon};
+        };
         int met = 0;
         std::array<RayCaster::Segment, RayCaster::kMaxSegments> segments;
         for (int first = 0; first < kClosureRays;
@@ -79,9 +77,7 @@ void measureClosure(const Scene& scene, const RayCaster& rays,
                 const int ray = first + k;
                 const glm::dvec3 from =
                     polygonPoint(p, params[static_cast<std::size_t>(ray) % params.size()]);
-                const glm::dvec3& l = local[ray];
-                segments[k] = {from, from + reach * (l.x * t + l.y * b + l.z * normal), id,
-                               RayCaster::kNoPolygon};
+                segments[k] = outward(from, local[ray]);
             }
             const std::uint16_t hit =
                 rays.blocked(Layer::Static, segments) | rays.blocked(Layer::Dynamic, segments);
@@ -95,12 +91,9 @@ void measureClosure(const Scene& scene, const RayCaster& rays,
             std::size_t left = 0;
             for (int k = 0; k < static_cast<int>(RayCaster::kMaxSegments); ++k) {
                 if ((hit >> k) & 1u) continue;
-                const glm::dvec3& l = local[first + k];
-                const glm::dvec3 turned = glm::normalize(l + kSeamTurn * glm::dvec3(1.0, 1.0, 0.0));
-                const glm::dvec3& from = segments[k].from;
-                again[left++] = {from,
-                                 from + reach * (turned.x * t + turned.y * b + turned.z * normal),
-                                 id, RayCaster::kNoPolygon};
+                again[left++] = outward(
+                    segments[k].from,
+                    glm::normalize(local[first + k] + kSeamTurn * glm::dvec3(1.0, 1.0, 0.0)));
             }
             if (left > 0) {
                 const std::span<const RayCaster::Segment> retry(again.data(), left);
