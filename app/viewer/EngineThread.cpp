@@ -47,6 +47,7 @@ struct EngineThread::Worker {
     std::string error;
     FrameStats frame;
     std::uint64_t moves = 0;
+    std::optional<std::uint64_t> caughtUpLogged;  // `moves` at the last "caught up" line
     std::uint64_t version = 0;
     double targetFps = 30.0;
     SnapshotOverlays overlays;
@@ -59,6 +60,8 @@ struct EngineThread::Worker {
     std::vector<std::shared_ptr<const std::vector<std::uint32_t>>> materials;
     std::deque<UpdateSample> history;
 
+    // Earlier frames left work for idle time.
+    bool behind() const { return engine && frame.pending + frame.stale + frame.unsent + frame.deferred + frame.unmeshed > 0; }
     double now() const {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
@@ -159,6 +162,11 @@ void EngineThread::run() {
         s->error = w.error;
         s->frame = w.frame;
         s->moves = w.moves;
+        s->caughtUp = w.engine && !w.solving && w.error.empty() && !w.behind();
+        if (s->caughtUp && w.options.log && w.caughtUpLogged != w.moves) {
+            w.options.log("engine: caught up after " + std::to_string(w.moves) + " moves");
+            w.caughtUpLogged = w.moves;
+        }
         s->targetFps = w.targetFps;
         s->epsilon = w.settings.epsilon;
         s->overlays = w.overlays;
@@ -379,9 +387,7 @@ void EngineThread::run() {
         std::deque<Command> commands;
         {
             std::unique_lock lock(queueMutex_);
-            const bool behind =
-                w.engine && w.frame.pending + w.frame.stale + w.frame.unsent + w.frame.deferred + w.frame.unmeshed > 0;
-            if (queue_.empty() && !behind) queueCv_.wait(lock, [&] { return !queue_.empty(); });
+            if (queue_.empty() && !w.behind()) queueCv_.wait(lock, [&] { return !queue_.empty(); });
             commands.swap(queue_);
         }
         if (commands.empty()) {  // idle: update what earlier frames left stale, coarse or unsent

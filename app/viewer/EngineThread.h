@@ -66,6 +66,9 @@ struct ViewerSnapshot {
     SolveStats solve;
     FrameStats frame;        // the last update (move or pending refinement)
     std::uint64_t moves = 0; // transforms applied so far
+    // Solved, and no earlier frame left anything stale, coarse, unsent or
+    // pending: the picture will not change until the next command.
+    bool caughtUp = false;
     std::size_t budget = 0;  // link updates allowed per frame at the target rate
     double targetFps = 0.0;
     double epsilon = 0.0;
@@ -127,7 +130,8 @@ struct EngineThreadOptions {
     double targetFps = 30.0;
     SnapshotOverlays overlays;
     std::string select;  // object (or light) to select once solved
-    // Called on the engine thread with one line per transform it receives
+    // Called on the engine thread with one line per transform it receives,
+    // and "engine: caught up after M moves" when it has nothing left to do
     // (--log-transforms); empty: silent.
     std::function<void(const std::string&)> log;
     double historySeconds = 10.0;  // how much of updateTimes to keep

@@ -273,12 +273,18 @@ int runViewer(const ViewerOptions& options) {
         // is a draw option: moving the slider uploads nothing.
         std::shared_ptr<const GpuScene> gpuScene;
         std::shared_ptr<const MeshSnapshot> gpuSource;
-        // --log-transforms: "viewer: shown overlays links=L changed=C" once a
-        // frame drawing a mesh with other overlays than the last line said
-        // has finished (scripts wait for it before a screenshot).
+        // --log-transforms: lines printed once a frame drawing what they say
+        // has finished (scripts wait for them before a screenshot):
+        // "viewer: shown overlays links=L changed=C" for a mesh with other
+        // overlays than the last such line said, and "viewer: shown caught up
+        // after M moves" for the picture of an engine with nothing left to do.
+        struct ShownLine {
+            std::string text;           // empty: nothing waits to be shown
+            std::uint64_t drawnIn = 0;  // the frame that draws it, once recorded
+        };
+        ShownLine overlaysShown, caughtUpShown;
         SnapshotOverlays overlaysLogged, overlaysToLog;
-        bool overlaysUnlogged = false;
-        std::uint64_t overlaysDrawnIn = 0;
+        std::optional<std::uint64_t> caughtUpQueued;  // moves of the last caught-up picture queued
 
         auto pending = options.screenshots;
         std::sort(pending.begin(), pending.end());
@@ -304,17 +310,25 @@ int runViewer(const ViewerOptions& options) {
                 if (options.logTransforms && (snap->overlays.modifiedLinks != overlaysLogged.modifiedLinks ||
                                               snap->overlays.changedElements != overlaysLogged.changedElements)) {
                     overlaysToLog = snap->overlays;
-                    overlaysUnlogged = true;
-                    overlaysDrawnIn = 0;
+                    overlaysShown = {"viewer: shown overlays links=" + std::to_string(int(overlaysToLog.modifiedLinks)) +
+                                         " changed=" + std::to_string(int(overlaysToLog.changedElements)),
+                                     0};
                 }
             }
-            if (overlaysUnlogged && overlaysDrawnIn > 0 && windowRenderer.finishedFrames() >= overlaysDrawnIn) {
-                std::printf("viewer: shown overlays links=%d changed=%d\n", overlaysToLog.modifiedLinks ? 1 : 0,
-                            overlaysToLog.changedElements ? 1 : 0);
-                std::fflush(stdout);
-                overlaysLogged = overlaysToLog;
-                overlaysUnlogged = false;
+            // A caught-up snapshot may bring no new mesh: it is shown once
+            // the picture drawn is its mesh.
+            if (options.logTransforms && snap->caughtUp && snap->mesh && snap->mesh == gpuSource &&
+                caughtUpQueued != snap->moves) {
+                caughtUpQueued = snap->moves;
+                caughtUpShown = {"viewer: shown caught up after " + std::to_string(snap->moves) + " moves", 0};
             }
+            for (ShownLine* line : {&overlaysShown, &caughtUpShown})
+                if (!line->text.empty() && line->drawnIn > 0 && windowRenderer.finishedFrames() >= line->drawnIn) {
+                    std::printf("%s\n", line->text.c_str());
+                    std::fflush(stdout);
+                    if (line == &overlaysShown) overlaysLogged = overlaysToLog;
+                    line->text.clear();
+                }
 
             if (windowRenderer.swapchainGeneration() != imguiGeneration) {
                 ImGui_ImplVulkan_SetMinImageCount(windowRenderer.minImageCount());
@@ -677,7 +691,8 @@ int runViewer(const ViewerOptions& options) {
                                       windowRenderer.extent(), drawOptions);
                 ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
                 const std::uint64_t serial = windowRenderer.endFrame(gpuScene, capture);
-                if (overlaysUnlogged && overlaysDrawnIn == 0 && gpuScene) overlaysDrawnIn = serial;
+                for (ShownLine* line : {&overlaysShown, &caughtUpShown})
+                    if (!line->text.empty() && line->drawnIn == 0 && gpuScene) line->drawnIn = serial;
                 if (!capture.empty()) {
                     std::printf("screenshot: %s\n", capture.c_str());
                     std::fflush(stdout);

@@ -110,8 +110,11 @@ void addOptions(CLI::App& app, ViewerOptions& o) {
         ->group(hooks);
     cli::addFlag(app, "--log-transforms", o.logTransforms,
                  "print 'engine: transform NAME translation X Y Z' for every\n"
-                 "transform the engine thread applies, and 'viewer: shown overlays\n"
-                 "links=0|1 changed=0|1' once the window shows other overlays")
+                 "transform the engine thread applies, 'engine: caught up after M\n"
+                 "moves' when it has nothing left to update, 'viewer: shown\n"
+                 "overlays links=0|1 changed=0|1' once the window shows other\n"
+                 "overlays, and 'viewer: shown caught up after M moves' once it\n"
+                 "shows that picture")
         ->group(hooks);
     cli::addFlag(app, "--print-gizmo", o.printGizmo,
                  "print 'object: NAME X Y' (screen pixels of each object's box\n"

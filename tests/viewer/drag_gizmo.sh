@@ -9,16 +9,8 @@
 # "viewer-exit N" last.
 set -u
 viewer=$1 scene=$2 out=$3 pick=${4:-} pick2=${5:-}
-shot() { xwd -root -silent -display "$DISPLAY" | convert xwd:- "png:$1"; }
-# Waits (up to 30 s) for a line of the log starting with $1.
-wait_for() {
-  for _ in $(seq 300); do
-    grep -q "^$1" "$out/viewer.log" && return 0
-    kill -0 $pid 2>/dev/null || return 1
-    sleep 0.1
-  done
-  return 1
-}
+# shot, wait_for, caught_up, settle: on $out/viewer.log and the viewer $pid.
+source "$(dirname "$0")/viewer_log.sh"
 
 # A target of 1 fps: each move frame gets a budget for its whole update, so
 # that the pictures show the drag and not how far a budget let it get on a
@@ -61,6 +53,7 @@ sleep 0.5
 shot "$out/before.png"
 
 # Press on the arrow, move in steps (a drag), release.
+moves=$(caught_up)
 xdotool mousemove "$x" "$y"
 sleep 0.3
 xdotool mousedown 1
@@ -71,19 +64,19 @@ done
 sleep 0.3
 xdotool mouseup 1
 xdotool mousemove 1100 60   # off the block and the panel
-# Time for the engine thread to catch up on what the frames' budgets left
-# stale or coarse (seconds under the sanitizers).
-sleep 5
+settle "$moves"
 shot "$out/after.png"
 
 # Ctrl+Z takes the drag back, Ctrl+Shift+Z does it again (the preselected
 # block's run only: each step waits for the engine).
 if [ -z "$pick" ]; then
+  moves=$(caught_up)
   xdotool key ctrl+z
-  sleep 5
+  settle "$moves"
   shot "$out/undone.png"
+  moves=$(caught_up)
   xdotool key ctrl+shift+z
-  sleep 5
+  settle "$moves"
   shot "$out/redone.png"
 fi
 

@@ -6,15 +6,8 @@
 # Writes OUTDIR/{viewer.log,before.png,after.png} and prints "viewer-exit N" last.
 set -u
 viewer=$1 scene=$2 out=$3 select=$4 key=${5:-}
-shot() { xwd -root -silent -display "$DISPLAY" | convert xwd:- "png:$1"; }
-wait_for() {
-  for _ in $(seq 300); do
-    grep -q "^$1" "$out/viewer.log" && return 0
-    kill -0 $pid 2>/dev/null || return 1
-    sleep 0.1
-  done
-  return 1
-}
+# shot, wait_for, caught_up, settle: on $out/viewer.log and the viewer $pid.
+source "$(dirname "$0")/viewer_log.sh"
 
 "$viewer" "$scene" --target-fps 1 --select "$select" --log-transforms --print-gizmo --quit-after 60 \
   >"$out/viewer.log" 2>&1 &
@@ -31,6 +24,7 @@ if [ -n "$key" ]; then
 fi
 shot "$out/before.png"
 
+moves=$(caught_up)
 xdotool mousemove "$x" "$y"
 sleep 0.3
 xdotool mousedown 1
@@ -41,7 +35,7 @@ done
 sleep 0.3
 xdotool mouseup 1
 xdotool mousemove 1100 60
-sleep 3
+settle "$moves"
 shot "$out/after.png"
 
 xdotool key ctrl+q
