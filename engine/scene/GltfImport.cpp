@@ -368,7 +368,7 @@ class Importer {
         if (!model_.skins.empty()) note(std::to_string(model_.skins.size()) + " skin(s) ignored");
         const auto known = [](const std::string& ext) {
             return ext == "KHR_materials_emissive_strength" || ext == "KHR_materials_unlit" ||
-                   ext == "KHR_lights_punctual";
+                   ext == "KHR_lights_punctual" || ext == "KHR_texture_transform";
         };
         // A required extension changes what the file's data means (Draco- or
         // meshopt-compressed buffers, quantized positions): read without it,
@@ -736,6 +736,51 @@ class Importer {
         return out;
     }
 
+    // A base colour texture's KHR_texture_transform, baked into the texture
+    // coordinates at import: uv' = offset + R(rotation) (scale * uv), with
+    // the rotation as glTF's implementations and sample model turn it (the
+    // image clockwise in the spec's v-down texture space; KhronosGroup/glTF
+    // issue 1563), and the extension's texCoord replacing the texture's.
+    struct UvTransform {
+        int set = 0;
+        glm::dvec2 offset{0.0}, scale{1.0};
+        double rotation = 0.0;
+        glm::dvec2 apply(glm::dvec2 uv) const {
+            const glm::dvec2 s = scale * uv;
+            const double c = std::cos(rotation), n = std::sin(rotation);
+            return offset + glm::dvec2(c * s.x + n * s.y, -n * s.x + c * s.y);
+        }
+    };
+    UvTransform uvTransform(const tinygltf::TextureInfo& info, const std::string& item) const {
+        UvTransform t;
+        t.set = info.texCoord;
+        const auto ext = info.extensions.find("KHR_texture_transform");
+        if (ext == info.extensions.end()) return t;
+        const tinygltf::Value& v = ext->second;
+        const std::string where = item + " KHR_texture_transform";
+        const auto pair = [&](const char* key, glm::dvec2& out) {
+            if (!v.Has(key)) return;
+            const tinygltf::Value& a = v.Get(key);
+            if (!a.IsArray() || a.ArrayLen() != 2 || !a.Get(0).IsNumber() || !a.Get(1).IsNumber() ||
+                !std::isfinite(a.Get(0).GetNumberAsDouble()) || !std::isfinite(a.Get(1).GetNumberAsDouble()))
+                fail(where, std::string(key) + " must be two finite numbers");
+            out = glm::dvec2(a.Get(0).GetNumberAsDouble(), a.Get(1).GetNumberAsDouble());
+        };
+        pair("offset", t.offset);
+        pair("scale", t.scale);
+        if (v.Has("rotation")) {
+            const tinygltf::Value& r = v.Get("rotation");
+            if (!r.IsNumber() || !std::isfinite(r.GetNumberAsDouble())) fail(where, "rotation must be a finite number");
+            t.rotation = r.GetNumberAsDouble();
+        }
+        if (v.Has("texCoord")) {
+            const tinygltf::Value& c = v.Get("texCoord");
+            if (!c.IsInt() || c.GetNumberAsInt() < 0) fail(where, "texCoord must be a non-negative integer");
+            t.set = c.GetNumberAsInt();
+        }
+        return t;
+    }
+
     // The same material without its texture (reflectance its mean), for
     // primitives that give no texture coordinates.
     std::uint32_t untexturedCopy(std::uint32_t material) {
@@ -822,12 +867,16 @@ class Importer {
         const std::vector<glm::dvec3> local = readPositions(prim, item);
         std::vector<glm::vec2> uv;
         if (materials_[material].texture >= 0) {
-            const int set = model_.materials[prim.material].pbrMetallicRoughness.baseColorTexture.texCoord;
-            uv = readTexCoords(prim, set, local.size(), item);
+            const tinygltf::TextureInfo& info = model_.materials[prim.material].pbrMetallicRoughness.baseColorTexture;
+            const UvTransform transform = uvTransform(info, quoted("material", model_.materials[prim.material].name,
+                                                                   static_cast<std::size_t>(prim.material)));
+            uv = readTexCoords(prim, transform.set, local.size(), item);
             if (uv.empty()) {
-                note(item + ": no TEXCOORD_" + std::to_string(set) + " for its base colour texture; the texture counts as its mean");
+                note(item + ": no TEXCOORD_" + std::to_string(transform.set) +
+                     " for its base colour texture; the texture counts as its mean");
                 material = untexturedCopy(material);
             }
+            for (glm::vec2& t : uv) t = glm::vec2(transform.apply(t));
         }
         std::vector<std::uint32_t> indices;
         if (prim.indices >= 0) {

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hierarchy/Hierarchy.h"
@@ -20,22 +22,24 @@ namespace {
 
 using test::GltfBuilder;
 
-// A material with an RGB texture of one row, baseColorFactor 0.8.
-int addTexturedMaterial(GltfBuilder& g, const std::vector<std::array<unsigned char, 3>>& row) {
+// A material with an RGB texture of one row, baseColorFactor 0.8;
+// `textureInfo`: more members of its baseColorTexture (e.g. extensions).
+int addTexturedMaterial(GltfBuilder& g, const std::vector<std::array<unsigned char, 3>>& row,
+                        const std::string& textureInfo = "") {
     const std::string png = test::makePng(static_cast<int>(row.size()), 1, row);
     g.images.push_back("{\"uri\":\"data:image/png;base64," + test::base64(png) + "\"}");
     g.textures.push_back("{\"source\":" + std::to_string(g.images.size() - 1) + "}");
     return g.addMaterial(
         "{\"name\":\"Tex\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.8,0.8,1],"
-        "\"baseColorTexture\":{\"index\":" + std::to_string(g.textures.size() - 1) + "}}}");
+        "\"baseColorTexture\":{\"index\":" + std::to_string(g.textures.size() - 1) + textureInfo + "}}}");
 }
 
 // A 2 x 3 m rectangle in the plane z = 0 facing +z, texture coordinates
 // u = x / 2, v = y / 3, and a 4 x 1 texture: two white texels, then two
 // black ones, so the half x < 1 is white. baseColorFactor 0.8.
-GltfBuilder texturedRectangle() {
+GltfBuilder texturedRectangle(const std::string& textureInfo = "") {
     GltfBuilder g;
-    const int mat = addTexturedMaterial(g, {{255, 255, 255}, {255, 255, 255}, {0, 0, 0}, {0, 0, 0}});
+    const int mat = addTexturedMaterial(g, {{255, 255, 255}, {255, 255, 255}, {0, 0, 0}, {0, 0, 0}}, textureInfo);
     const std::vector<glm::vec3> p = {{0, 0, 0}, {2, 0, 0}, {2, 3, 0}, {0, 3, 0}};
     const std::vector<glm::vec2> uv = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     g.addMesh("T", g.addPositions(p), g.addIndices({0, 1, 2, 0, 2, 3}), mat, -1, g.addTexCoords(uv));
@@ -87,6 +91,62 @@ TEST(Texture, ElementsReflectTheTexelsUnderThem) {
     for (ElementId c : h[top].children) {
         const bool white = h[c].center.x < 1.0;
         EXPECT_NEAR(h[c].reflectance.x, white ? 0.8 : 0.0, 1e-12) << "child at x = " << h[c].center.x;
+    }
+}
+
+// The four children's reflectance (red) of the rectangle's polygon, with
+// their centres.
+std::vector<std::pair<glm::dvec3, double>> childReflectance(const Scene& s) {
+    Hierarchy h(s, 1e-6);
+    const ElementId top = h.polygonElement(0);
+    h.subdivide(top);
+    std::vector<std::pair<glm::dvec3, double>> out;
+    for (ElementId c : h[top].children) out.emplace_back(h[c].center, h[c].reflectance.x);
+    return out;
+}
+
+// KHR_texture_transform, as Blender writes it for a mapping node, is baked
+// into the texture coordinates: an offset and scale that pick the black half
+// of the texture make the whole rectangle black; a quarter turn makes the
+// texture run along y, white where y < 1.5 (the other way round, it would be
+// white where y > 1.5); the extension's texCoord picks another set.
+TEST(Texture, TheTextureTransformMovesTheTexelsUnderTheElements) {
+    test::TempDir dir;
+    const Scene shifted = loadGltf(
+        texturedRectangle(",\"extensions\":{\"KHR_texture_transform\":{\"offset\":[0.5,0],\"scale\":[0.5,1]}}")
+            .writeEmbedded(dir, "shifted.gltf")
+            .string());
+    for (const auto& [centre, rho] : childReflectance(shifted)) EXPECT_EQ(rho, 0.0) << "child at x = " << centre.x;
+
+    const Scene turned = loadGltf(
+        texturedRectangle(",\"extensions\":{\"KHR_texture_transform\":{\"rotation\":1.5707963267948966}}")
+            .writeEmbedded(dir, "turned.gltf")
+            .string());
+    for (const auto& [centre, rho] : childReflectance(turned))
+        EXPECT_NEAR(rho, centre.y < 1.5 ? 0.8 : 0.0, 1e-6) << "child at y = " << centre.y;
+
+    // TEXCOORD_1 = 1 - TEXCOORD_0 in u: the texture mirrored, white where x > 1.
+    GltfBuilder g = texturedRectangle(",\"extensions\":{\"KHR_texture_transform\":{\"texCoord\":1}}");
+    const int second = g.addTexCoords({{1, 0}, {0, 0}, {0, 1}, {1, 1}});
+    const std::string first = "\"TEXCOORD_0\":";
+    g.meshes[0].insert(g.meshes[0].find(first), "\"TEXCOORD_1\":" + std::to_string(second) + ",");
+    for (const auto& [centre, rho] : childReflectance(loadGltf(g.writeEmbedded(dir, "second.gltf").string())))
+        EXPECT_NEAR(rho, centre.x > 1.0 ? 0.8 : 0.0, 1e-6) << "child at x = " << centre.x;
+}
+
+TEST(Texture, ABadTextureTransformIsAnErrorNamingTheMaterial) {
+    test::TempDir dir;
+    try {
+        loadGltf(texturedRectangle(",\"extensions\":{\"KHR_texture_transform\":{\"scale\":[1]}}")
+                     .writeEmbedded(dir)
+                     .string());
+        ADD_FAILURE() << "a scale of one number was accepted";
+    } catch (const std::exception& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("'Tex'"), std::string::npos) << m;
+        EXPECT_NE(m.find("KHR_texture_transform"), std::string::npos) << m;
+        EXPECT_NE(m.find("scale must be two finite numbers"), std::string::npos) << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
     }
 }
 
