@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "scene/ClosedBackFaces.h"
+#include "scene/Rectangles.h"
 
 namespace rad {
 namespace {
@@ -171,12 +172,50 @@ std::optional<MergedQuad> mergeToQuad(const WorldTriangle& a, const WorldTriangl
     return std::nullopt;
 }
 
-// A region of coplanar triangles merged into one convex polygon.
+// A region of coplanar triangles merged into one convex polygon, or one of
+// the rectangles a region is cut into.
 struct MergedRegion {
     std::array<glm::dvec3, 4> corners{};
     std::uint8_t count = 0;
     std::uint32_t material = 0;
 };
+
+// The union of a region as one polygon: its outline (`next`: each outline
+// vertex's successor, `at`: their positions) as one loop, with the vertices
+// on straight stretches dropped, a convex triangle or quad whose area is the
+// triangles' (`area`: nothing overlaps or folds). Its material is left to
+// the caller.
+std::optional<MergedRegion> convexUnion(const std::map<std::uint32_t, std::uint32_t>& next,
+                                        const std::map<std::uint32_t, glm::dvec3>& at, const glm::dvec3& nrm, double area) {
+    std::vector<glm::dvec3> loop;
+    std::uint32_t v = next.begin()->first;
+    for (std::size_t steps = 0; steps < next.size(); ++steps) {
+        loop.push_back(at.at(v));
+        v = next.at(v);
+    }
+    if (v != next.begin()->first) return std::nullopt;  // more than one loop: a hole, or pieces
+    // Drop the vertices on straight stretches of the outline.
+    for (bool dropped = true; dropped && loop.size() > 3;) {
+        dropped = false;
+        for (std::size_t i = 0; i < loop.size() && loop.size() > 3; ++i) {
+            const glm::dvec3 e1 = loop[i] - loop[(i + loop.size() - 1) % loop.size()];
+            const glm::dvec3 e2 = loop[(i + 1) % loop.size()] - loop[i];
+            if (glm::length(glm::cross(e1, e2)) <= 1e-5 * glm::length(e1) * glm::length(e2) && glm::dot(e1, e2) > 0.0) {
+                loop.erase(loop.begin() + static_cast<std::ptrdiff_t>(i));
+                dropped = true;
+            }
+        }
+    }
+    if (loop.size() > 4) return std::nullopt;
+    MergedRegion r;
+    r.count = static_cast<std::uint8_t>(loop.size());
+    for (std::size_t i = 0; i < loop.size(); ++i) r.corners[i] = loop[i];
+    if (r.count == 4 && !strictlyConvex(r.corners, nrm)) return std::nullopt;
+    glm::dvec3 vector(0.0);
+    for (std::size_t i = 0; i < loop.size(); ++i) vector += glm::cross(loop[i], loop[(i + 1) % loop.size()]);
+    if (std::abs(0.5 * glm::dot(vector, nrm) - area) > 1e-6 * area) return std::nullopt;
+    return r;
+}
 
 // Takes out of `tris` every region of two or more triangles of one material,
 // in one plane and joined by shared edges (the same two vertices, in
@@ -186,8 +225,10 @@ struct MergedRegion {
 // those polygons. CAD tools triangulate a wall with points along its edges
 // into long slivers; meshed as slivers, each gets its own elements and the
 // display streaks along them, meshed as the wall it is one quadtree. A
-// region whose outline is not one loop (a hole), or not convex with at most
-// four corners, keeps its triangles (the pair merge still applies).
+// region that is not one convex polygon (a wall with a door or a window cut
+// out of it) becomes the rectangles it is made of when its outline runs
+// along two perpendicular directions (scene/Rectangles.h); otherwise it keeps
+// its triangles (the pair merge still applies).
 // A sliver: area under this share of its longest edge squared (about 1:10;
 // half a square has 0.25, an equilateral triangle 0.43).
 constexpr double kSliverShape = 0.05;
@@ -257,39 +298,22 @@ std::vector<MergedRegion> mergeCoplanarRegions(std::vector<WorldTriangle>& tris,
                 at[a] = tris[t].v[k];
             }
         }
-        if (!manifold || next.empty()) continue;
-        std::vector<glm::dvec3> loop;
-        std::uint32_t v = next.begin()->first;
-        for (std::size_t steps = 0; steps < next.size(); ++steps) {
-            loop.push_back(at[v]);
-            v = next[v];
-        }
-        if (v != next.begin()->first) continue;  // more than one loop: a hole, or pieces
-        // Drop the vertices on straight stretches of the outline.
-        for (bool dropped = true; dropped && loop.size() > 3;) {
-            dropped = false;
-            for (std::size_t i = 0; i < loop.size() && loop.size() > 3; ++i) {
-                const glm::dvec3 e1 = loop[i] - loop[(i + loop.size() - 1) % loop.size()];
-                const glm::dvec3 e2 = loop[(i + 1) % loop.size()] - loop[i];
-                if (glm::length(glm::cross(e1, e2)) <= 1e-5 * glm::length(e1) * glm::length(e2) &&
-                    glm::dot(e1, e2) > 0.0) {
-                    loop.erase(loop.begin() + static_cast<std::ptrdiff_t>(i));
-                    dropped = true;
-                }
-            }
-        }
-        if (loop.size() > 4 || glm::length(sum) <= 0.0) continue;
+        if (!manifold || next.empty() || glm::length(sum) <= 0.0) continue;
         const glm::dvec3 nrm = glm::normalize(sum);
-        MergedRegion r;
-        r.count = static_cast<std::uint8_t>(loop.size());
-        r.material = tris[members[0]].material;
-        for (std::size_t i = 0; i < loop.size(); ++i) r.corners[i] = loop[i];
-        if (r.count == 4 && !strictlyConvex(r.corners, nrm)) continue;
-        // The union's area must be the triangles' (no overlap, nothing folded).
-        glm::dvec3 vector(0.0);
-        for (std::size_t i = 0; i < loop.size(); ++i) vector += glm::cross(loop[i], loop[(i + 1) % loop.size()]);
-        if (std::abs(0.5 * glm::dot(vector, nrm) - area) > 1e-6 * area) continue;
-        out.push_back(r);
+        const std::uint32_t material = tris[members[0]].material;
+        if (const std::optional<MergedRegion> whole = convexUnion(next, at, nrm, area)) {
+            out.push_back(*whole);
+            out.back().material = material;
+        } else {
+            // Not one convex polygon (a wall with a door or a window cut
+            // out of it): the rectangles it is made of, when its outline
+            // runs along two directions.
+            std::vector<std::pair<glm::dvec3, glm::dvec3>> edges;
+            for (const auto& [a, b] : next) edges.emplace_back(at[a], at[b]);
+            const auto rectangles = rectanglesOf(edges, nrm, area);
+            if (!rectangles) continue;
+            for (const std::array<glm::dvec3, 4>& q : *rectangles) out.push_back(MergedRegion{q, 4, material});
+        }
         for (std::uint32_t t : members) merged[t] = true;
     }
     std::vector<WorldTriangle> rest;
@@ -1141,7 +1165,7 @@ class Importer {
         if (dropped > 0) note(std::to_string(dropped) + " degenerate triangle(s) dropped (" + size.str() + "; " + where + ")");
         if (notes_.mergedRegionTriangles > 0)
             note(std::to_string(notes_.mergedRegionTriangles) +
-                 " triangle(s) merged with their coplanar neighbours into convex polygons");
+                 " triangle(s) merged with their coplanar neighbours into convex polygons or rectangles");
         if (backFaces_ > 0)
             note(std::to_string(backFaces_) + " polygon(s) of doubleSided materials given a back face of their own");
         if (frontOnly > 0)

@@ -176,6 +176,107 @@ TEST(GltfImport, ASliverTriangulatedWallImportsAsTheWall) {
     EXPECT_LT(compareSamples(a.samples(), b.samples()).rms, 0.01);
 }
 
+// The luminance the display shows at (x, y) on a wall in the plane z = 0
+// facing +z: the snapshot's colours interpolated over its triangle there.
+double shownOnWall(const MeshSnapshot& m, double x, double y) {
+    const auto cross = [](glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; };
+    const glm::dvec2 p(x, y);
+    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        const std::array<std::uint32_t, 3> v = {m.indices[t], m.indices[t + 1], m.indices[t + 2]};
+        if (std::abs(m.positions[v[0]].z) > 1e-4 || std::abs(m.positions[v[1]].z) > 1e-4 ||
+            std::abs(m.positions[v[2]].z) > 1e-4)
+            continue;
+        const glm::dvec2 a(m.positions[v[0]]), b(m.positions[v[1]]), c(m.positions[v[2]]);
+        const double d = cross(b - a, c - a);
+        if (d <= 0.0) continue;  // facing -z, or degenerate
+        const double wa = cross(b - p, c - p) / d, wb = cross(c - p, a - p) / d, wc = 1.0 - wa - wb;
+        if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+        return wa * luminance(glm::dvec3(m.colors[v[0]])) + wb * luminance(glm::dvec3(m.colors[v[1]])) +
+               wc * luminance(glm::dvec3(m.colors[v[2]]));
+    }
+    ADD_FAILURE() << "no triangle of the wall under (" << x << ", " << y << ")";
+    return 0.0;
+}
+
+// A 12 x 2.5 m wall with a 1 x 1 m window, as a CAD tool triangulates it:
+// eight triangles joining the window's corners to the wall's, two of them
+// slivers 12 m long. It imports as four rectangles, and lit by a panel in
+// front of it, the display shows across the wall the light of the same wall
+// modelled as four other rectangles (strips beside, under and over the
+// window): no streaks along the slivers.
+TEST(GltfImport, AWallWithAWindowImportsAsRectangles) {
+    TempDir dir;
+    const auto solved = [&](bool slivers, const EngineSettings& settings) {
+        GltfBuilder g;
+        const int grey = g.addGrey("Grey", 0.6);
+        std::vector<glm::vec3> p;
+        std::vector<std::uint32_t> idx;
+        if (slivers) {
+            // The wall's corners A B C D, then the window's a b c d.
+            p = {{0, 0, 0}, {12, 0, 0}, {12, 2.5f, 0}, {0, 2.5f, 0}, {5, 1, 0}, {6, 1, 0}, {6, 2, 0}, {5, 2, 0}};
+            idx = {0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
+        } else {
+            for (const auto& [x0, y0, x1, y1] : std::vector<std::array<float, 4>>{
+                     {0, 0, 5, 2.5f}, {6, 0, 12, 2.5f}, {5, 0, 6, 1}, {5, 2, 6, 2.5f}}) {
+                const auto k = static_cast<std::uint32_t>(p.size());
+                p.insert(p.end(), {{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}});
+                idx.insert(idx.end(), {k, k + 1, k + 2, k, k + 2, k + 3});
+            }
+        }
+        g.addNode("\"name\":\"Wall\",\"mesh\":" + std::to_string(g.addMesh("Wall", g.addPositions(p), g.addIndices(idx), grey)));
+        const int lamp = g.addMaterial("{\"name\":\"Lamp\",\"emissiveFactor\":[1,1,1]}");
+        const std::vector<glm::vec3> q = {{3.0f, 0.5f, 1.0f}, {3.0f, 1.5f, 1.0f}, {4.0f, 1.5f, 1.0f}, {4.0f, 0.5f, 1.0f}};
+        g.addNode("\"name\":\"Lamp\",\"mesh\":" + std::to_string(g.addMesh("Lamp", g.addPositions(q), g.addIndices({0, 1, 2, 0, 2, 3}), lamp)));
+        ImportNotes notes;
+        const Scene s = loadGltf(path(g.writeEmbedded(dir, slivers ? "slivers.gltf" : "strips.gltf")), &notes);
+        if (slivers) {
+            EXPECT_EQ(notes.mergedRegionTriangles, 8u);
+            EXPECT_EQ(s.objects[0].polygonCount, 4u);
+            double area = 0.0;
+            for (std::uint32_t i = 0; i < s.objects[0].polygonCount; ++i) {
+                const Polygon& wall = s.polygons[s.objects[0].firstPolygon + i];
+                EXPECT_EQ(wall.vertexCount, 4);
+                EXPECT_NEAR(glm::length(wall.normal() - glm::dvec3(0, 0, 1)), 0.0, 1e-9);
+                for (int k = 0; k < 4; ++k)
+                    EXPECT_NEAR(glm::dot(wall.vertices[(k + 1) % 4] - wall.vertices[k],
+                                         wall.vertices[(k + 2) % 4] - wall.vertices[(k + 1) % 4]),
+                                0.0, 1e-6);
+                area += wall.area();
+            }
+            EXPECT_NEAR(area, 29.0, 1e-5);
+        }
+        Engine e(s, settings);
+        EXPECT_TRUE(e.solve().converged);
+        return e.snapshot();
+    };
+    const MeshSnapshot rectangles = solved(true, EngineSettings{}), strips = solved(false, EngineSettings{});
+    EngineSettings fine;
+    fine.epsilon /= 16.0;
+    const MeshSnapshot reference = solved(false, fine);
+    // Relative to the reference's mean over the points: rms and worst.
+    const auto error = [&](const MeshSnapshot& m) {
+        double sum = 0.0, squares = 0.0, worst = 0.0;
+        int n = 0;
+        for (double x = 0.1; x < 12.0; x += 0.2)
+            for (double y = 0.05; y < 2.5; y += 0.1) {
+                if (x > 5.0 && x < 6.0 && y > 1.0 && y < 2.0) continue;  // the window
+                const double shown = shownOnWall(m, x, y), expected = shownOnWall(reference, x, y);
+                sum += expected;
+                squares += (shown - expected) * (shown - expected);
+                worst = std::max(worst, std::abs(shown - expected));
+                ++n;
+            }
+        return std::pair(std::sqrt(squares / n) / (sum / n), worst / (sum / n));
+    };
+    const auto [rms, worst] = error(rectangles);
+    const auto [stripsRms, stripsWorst] = error(strips);
+    std::printf("  against epsilon / 16: rectangles rms %.4f worst %.4f, strips rms %.4f worst %.4f\n", rms, worst,
+                stripsRms, stripsWorst);
+    EXPECT_LT(rms, 1.5 * stripsRms);
+    EXPECT_LT(worst, 1.5 * stripsWorst);
+    RecordProperty("rms", std::to_string(rms));
+}
+
 TEST(GltfImport, SmallIndexTypesAndNonIndexedLoad) {
     TempDir dir;
     GltfBuilder g;

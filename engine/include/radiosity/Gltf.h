@@ -37,8 +37,8 @@ struct ImportNotes {
     std::size_t degenerateTriangles = 0;
     std::size_t mergedQuads = 0;
     // Triangles whose coplanar region (one material, joined by shared edges)
-    // became one convex polygon: a CAD triangulation of a wall in slivers
-    // imports as the wall.
+    // became one convex polygon, or rectangles: a CAD triangulation of a wall
+    // in slivers imports as the wall, a wall with a window as its rectangles.
     std::size_t mergedRegionTriangles = 0;
     // Polygons dropped because an earlier polygon (in node order) has the
     // same vertices in the same cyclic order, so faces the same way, after
