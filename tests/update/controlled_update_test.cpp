@@ -342,6 +342,14 @@ TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     engine.refinePending();  // the bookcase's move is made (and measured)
     const FrameStats chair = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, tight);
     EXPECT_EQ(chair.deferred, 0u);
+    // A frame its traversal would fill but for a fifth waits too: the
+    // traversal may take only kTraversalShare (3/4) of the frame, the rest is
+    // for the link updates it finds.
+    UpdateSettings filled;
+    filled.deadlineSeconds = 1.2 * std::min(chairTraversal, chair.traversalSeconds);  // the least measured
+    const FrameStats waits = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
+    EXPECT_EQ(waits.deferred, 1u);
+    EXPECT_EQ(waits.shaftTests, 0u);
 }
 
 // The live estimate is in the units of the measured error (the rms
