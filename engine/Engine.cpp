@@ -965,6 +965,7 @@ std::string channels(const glm::dvec3& v) {
 FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("editMaterial before solve()");
+    const auto start = std::chrono::steady_clock::now();
     // Every edit checked before any is applied.
     for (const MaterialEdit& e : edits) {
         const std::optional<std::uint32_t> found = s.scene.findObject(e.object);
@@ -1046,19 +1047,30 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
         }
     }
     if (changed.empty()) return FrameStats{};  // the values they already have: nothing changes
-    const UpdateSettings inner = s.forUpdater(settings, 0.0);
-    FrameStats stats = s.updater.propagate(changed, inner);
     // Refinement follows the light the edit changed in steps from the
     // solve's (update/OracleSteps.h), each element by its share of the
     // emitted power: an edit taken back returns to the solve's hierarchy.
     // The light links of punctual lights judge against the power now (in
-    // the scale the solve's thresholds were taken in).
+    // the scale the solve's thresholds were taken in), and a light whose
+    // share of it stepped is linked again (LightLinks::judgedIntensity).
     const double power = s.scale * emittedPower(s.scene);
     if (power > 0.0) {
-        s.updater.setLightScale(s.anchorPower / power);
         s.lightLinks.setThreshold(s.refiner.settings().epsilon * power);
+        const std::vector<ElementId> relinked = s.lightLinks.followShares(s.lightDeadline(start, settings, 0.0));
+        if (!relinked.empty()) {
+            changed.insert(changed.end(), relinked.begin(), relinked.end());
+            s.updater.noteLightChanges(s.lightLinks.takeChanges());
+            s.solver.setDirectBound(s.lightLinks.directBound());
+        }
     }
+    const double lightSeconds = secondsSince(start);
+    const UpdateSettings inner = s.forUpdater(settings, lightSeconds);
+    FrameStats stats = s.updater.propagate(changed, inner);
+    if (power > 0.0) s.updater.setLightScale(s.anchorPower / power);
     s.updater.judgeAgain(inner, stats);
+    stats.updateSeconds += lightSeconds;  // the light links made again
+    stats.totalSeconds += lightSeconds;
+    stats.pending += s.lightLinks.pendingCount();
     s.buildMesh(stats, settings.deadlineSeconds);
     return stats;
 }

@@ -5,14 +5,52 @@
 #include <algorithm>
 #include <cmath>
 
-#include "links/FormFactor.h"
 #include "geometry/Shaft.h"
+#include "links/FormFactor.h"
+#include "update/OracleSteps.h"
 
 namespace rad {
 
 void LightLinks::sizeTables() {
     links_.resize(scene_.lights.size());
     pending_.resize(scene_.lights.size());
+    anchors_.resize(scene_.lights.size());
+}
+
+double LightLinks::judgedIntensity(std::uint32_t light) const {
+    const double now = luminance(scene_.lights[light].intensity);
+    const Anchor& a = anchors_[light];
+    if (!(a.intensity > 0.0) || !(now > 0.0) || a.level != 0) return now;
+    // At the anchor's level: the anchor's share, exactly its intensity under its threshold.
+    return threshold_ == a.threshold ? a.intensity : a.intensity * (threshold_ / a.threshold);
+}
+
+int LightLinks::shareLevel(std::uint32_t light) const {
+    const double now = luminance(scene_.lights[light].intensity);
+    const Anchor& a = anchors_[light];
+    if (!(a.intensity > 0.0) || !(now > 0.0) || !(threshold_ > 0.0)) return a.level;
+    const double steps = std::log((now / threshold_) / (a.intensity / a.threshold)) / std::log(OracleSteps::kStep);
+    return std::abs(steps - a.level) > OracleSteps::kHysteresis ? static_cast<int>(std::lround(steps)) : a.level;
+}
+
+std::vector<ElementId> LightLinks::followShares(std::optional<Clock::time_point> deadline) {
+    sizeTables();
+    std::vector<ElementId> changed;
+    for (std::uint32_t l = 0; l < scene_.lights.size(); ++l) {
+        Anchor& a = anchors_[l];
+        if (!(a.intensity > 0.0)) {
+            // Dark when linked: its first positive intensity is its anchor
+            // (refreshIntensity linked it at that intensity).
+            const double now = luminance(scene_.lights[l].intensity);
+            if (now > 0.0) a = Anchor{now, threshold_, 0};
+            continue;
+        }
+        const int level = shareLevel(l);
+        if (level == a.level) continue;
+        a.level = level;
+        for (ElementId e : relinkLight(l, deadline)) changed.push_back(e);
+    }
+    return changed;
 }
 
 const std::vector<LightLinks::LightLink>& LightLinks::linksOf(std::size_t light, std::uint32_t polygon) const {
@@ -72,7 +110,7 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
 void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>& polygons,
                       std::optional<Clock::time_point> deadline) {
     const PunctualLight& light = scene_.lights[lightIndex];
-    const double intensity = luminance(light.intensity);
+    const double intensity = judgedIntensity(lightIndex);
     struct Item {
         std::uint32_t polygon;
         ElementId element;
@@ -143,6 +181,8 @@ double LightLinks::sumDirect(std::uint32_t polygon) {
 
 void LightLinks::linkAll() {
     sizeTables();
+    for (std::uint32_t l = 0; l < scene_.lights.size(); ++l)
+        anchors_[l] = Anchor{luminance(scene_.lights[l].intensity), threshold_, 0};
     std::vector<std::uint32_t> all(scene_.polygons.size());
     for (std::uint32_t p = 0; p < all.size(); ++p) all[p] = p;
     for (std::uint32_t l = 0; l < scene_.lights.size(); ++l) link(l, all, std::nullopt);

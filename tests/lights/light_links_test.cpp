@@ -182,6 +182,43 @@ TEST(PunctualLight, MovedAndDimmedLikeAnObject) {
     EXPECT_THROW(engine.editMaterial("bulb", std::nullopt, glm::dvec3(0.5)), std::invalid_argument);
 }
 
+// The blocker scene with a second bulb of intensity `side` off to the side,
+// which the blocker does not shade; `name`: the file.
+Scene twoBulbs(const TempDir& dir, double bulb, double side, const std::string& name) {
+    GltfBuilder g;
+    addSquare(g, "floor", kA, 0.0, true, g.addGrey("grey", kRho));
+    addSquare(g, "blocker", kB, kY, true, g.addGrey("black", 0.0));
+    addLights(g, "[{\"type\":\"point\",\"intensity\":" + number(bulb) + "},{\"type\":\"point\",\"intensity\":" +
+                     number(side) + "}]");
+    addLightNode(g, "bulb", 0, {0.0, kH, 0.0});
+    addLightNode(g, "side", 1, {1.5, kH, 1.5});
+    return loadGltf(g.writeEmbedded(dir, name).string());
+}
+
+// A light's links are refined by its share of the light (LightLinks::
+// judgedIntensity): a bulb that casts the blocker's shadow at a hundredth
+// of the side bulb's intensity is linked coarsely; brightened to the side
+// bulb's, its shadow's edge is refined as a solve at that intensity refines
+// it, and set back, its links return to the solve's.
+TEST(PunctualLight, ABrightenedLightIsRefinedByItsNewShare) {
+    TempDir dir;
+    Engine engine(twoBulbs(dir, 0.1, 10.0, "dim.gltf"), EngineSettings{});
+    ASSERT_TRUE(engine.solve().converged);
+    const RadiositySamples solved = engine.samples();
+    const MemoryStats before = engine.memory();
+    engine.editMaterial("bulb", glm::dvec3(10.0), std::nullopt);
+    Engine fresh(twoBulbs(dir, 10.0, 10.0, "bright.gltf"), EngineSettings{});
+    ASSERT_TRUE(fresh.solve().converged);
+    const SolutionError e = compareSamples(engine.samples(), fresh.samples());
+    std::printf("  brightened: rms %.5f max %.4f against a solve at that intensity; light links %zu -> %zu bytes\n",
+                e.rms, e.max, before.links, engine.memory().links);
+    EXPECT_LT(e.rms, 1e-4);  // measured 0: linked as the solve links it (46% rms before)
+    EXPECT_GT(engine.memory().links, before.links);  // the shadow's edge refined
+    engine.editMaterial("bulb", glm::dvec3(0.1), std::nullopt);
+    EXPECT_EQ(engine.memory().links, before.links);
+    EXPECT_LT(compareSamples(engine.samples(), solved).rms, 1e-4);
+}
+
 // A light moved on a deadline already past is linked at the first level only
 // (every polygon facing it, coarse); the polygons left coarse wait, pending,
 // and idle frames on the same deadline link them in full, a few at a time:
