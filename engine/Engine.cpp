@@ -995,15 +995,13 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
         }
     }
     std::vector<ElementId> changed;
+    std::vector<std::uint32_t> editedLights;
     for (const MaterialEdit& e : edits) {
         // A light's emission is its intensity (colour times intensity).
         if (const std::optional<std::uint32_t> light = s.scene.findLight(e.object)) {
             if (!e.emission || s.scene.lights[*light].intensity == *e.emission) continue;
             s.scene.lights[*light].intensity = *e.emission;
-            const std::vector<ElementId> lit = s.lightLinks.refreshIntensity(*light);
-            changed.insert(changed.end(), lit.begin(), lit.end());
-            s.updater.noteLightChanges(s.lightLinks.takeChanges());
-            s.solver.setDirectBound(s.lightLinks.directBound());
+            editedLights.push_back(*light);  // summed again under the new threshold, below
             continue;
         }
         const Object& o = s.scene.objects[*s.scene.findObject(e.object)];
@@ -1046,22 +1044,27 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
             }
         }
     }
-    if (changed.empty()) return FrameStats{};  // the values they already have: nothing changes
     // Refinement follows the light the edit changed in steps from the
     // solve's (update/OracleSteps.h), each element by its share of the
     // emitted power: an edit taken back returns to the solve's hierarchy.
     // The light links of punctual lights judge against the power now (in
-    // the scale the solve's thresholds were taken in), and a light whose
-    // share of it stepped is linked again (LightLinks::judgedIntensity).
+    // the scale the solve's thresholds were taken in): an edited light's
+    // direct light is summed again (a dark one linked) under it, and a
+    // light whose share of it stepped is linked again
+    // (LightLinks::judgedIntensity).
     const double power = s.scale * emittedPower(s.scene);
-    if (power > 0.0) {
-        s.lightLinks.setThreshold(s.refiner.settings().epsilon * power);
-        const std::vector<ElementId> relinked = s.lightLinks.followShares(s.lightDeadline(start, settings, 0.0));
-        if (!relinked.empty()) {
-            changed.insert(changed.end(), relinked.begin(), relinked.end());
-            s.updater.noteLightChanges(s.lightLinks.takeChanges());
-            s.solver.setDirectBound(s.lightLinks.directBound());
-        }
+    if (power > 0.0) s.lightLinks.setThreshold(s.refiner.settings().epsilon * power);
+    for (std::uint32_t light : editedLights) {
+        const std::vector<ElementId> lit = s.lightLinks.refreshIntensity(light);
+        changed.insert(changed.end(), lit.begin(), lit.end());
+    }
+    std::vector<ElementId> relinked;
+    if (power > 0.0) relinked = s.lightLinks.followShares(s.lightDeadline(start, settings, 0.0));
+    changed.insert(changed.end(), relinked.begin(), relinked.end());
+    if (changed.empty()) return FrameStats{};  // the values they already have: nothing changes
+    if (!editedLights.empty() || !relinked.empty()) {
+        s.updater.noteLightChanges(s.lightLinks.takeChanges());
+        s.solver.setDirectBound(s.lightLinks.directBound());
     }
     const double lightSeconds = secondsSince(start);
     const UpdateSettings inner = s.forUpdater(settings, lightSeconds);

@@ -223,6 +223,25 @@ TEST(PunctualLight, ABrightenedLightIsRefinedByItsNewShare) {
     EXPECT_LT(compareSamples(engine.samples(), solved).rms, 1e-4);
 }
 
+// A light dark at the solve has no links; lit by an edit, it is linked under
+// the threshold of the lit scene, as a solve of that scene links it, and
+// that intensity becomes its anchor: brightened and set back to it, it has
+// the same links again.
+TEST(PunctualLight, ALightDarkAtTheSolveIsLinkedAsTheLitScene) {
+    TempDir dir;
+    Engine engine(twoBulbs(dir, 0.0, 10.0, "dark.gltf"), EngineSettings{});
+    ASSERT_TRUE(engine.solve().converged);
+    engine.editMaterial("bulb", glm::dvec3(10.0), std::nullopt);
+    Engine fresh(twoBulbs(dir, 10.0, 10.0, "lit.gltf"), EngineSettings{});
+    ASSERT_TRUE(fresh.solve().converged);
+    EXPECT_LT(compareSamples(engine.samples(), fresh.samples()).rms, 1e-4);
+    const MemoryStats lit = engine.memory();
+    engine.editMaterial("bulb", glm::dvec3(40.0), std::nullopt);
+    engine.editMaterial("bulb", glm::dvec3(10.0), std::nullopt);
+    EXPECT_EQ(engine.memory().links, lit.links);
+    EXPECT_LT(compareSamples(engine.samples(), fresh.samples()).rms, 1e-4);
+}
+
 // A light moved on a deadline already past is linked at the first level only
 // (every polygon facing it, coarse); the polygons left coarse wait, pending,
 // and idle frames on the same deadline link them in full, a few at a time:
