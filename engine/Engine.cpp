@@ -1053,16 +1053,18 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     // light whose share of it stepped is linked again
     // (LightLinks::judgedIntensity).
     const double power = s.scale * emittedPower(s.scene);
-    if (power > 0.0) s.lightLinks.setThreshold(s.refiner.settings().epsilon * power);
-    for (std::uint32_t light : editedLights) {
-        const std::vector<ElementId> lit = s.lightLinks.refreshIntensity(light);
-        changed.insert(changed.end(), lit.begin(), lit.end());
+    std::vector<std::uint32_t> stepped;
+    if (power > 0.0) {
+        s.lightLinks.setThreshold(s.refiner.settings().epsilon * power);
+        stepped = s.lightLinks.stepShares();
     }
-    std::vector<ElementId> relinked;
-    if (power > 0.0) relinked = s.lightLinks.followShares(s.lightDeadline(start, settings, 0.0));
-    changed.insert(changed.end(), relinked.begin(), relinked.end());
+    for (std::uint32_t light : stepped)
+        for (ElementId e : s.lightLinks.relinkLight(light, s.lightDeadline(start, settings, 0.0))) changed.push_back(e);
+    for (std::uint32_t light : editedLights)
+        if (std::find(stepped.begin(), stepped.end(), light) == stepped.end())  // linked again: summed there
+            for (ElementId e : s.lightLinks.refreshIntensity(light)) changed.push_back(e);
     if (changed.empty()) return FrameStats{};  // the values they already have: nothing changes
-    if (!editedLights.empty() || !relinked.empty()) {
+    if (!editedLights.empty() || !stepped.empty()) {
         s.updater.noteLightChanges(s.lightLinks.takeChanges());
         s.solver.setDirectBound(s.lightLinks.directBound());
     }

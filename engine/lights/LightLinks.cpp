@@ -33,14 +33,14 @@ int LightLinks::shareLevel(std::uint32_t light) const {
     return std::abs(steps - a.level) > OracleSteps::kHysteresis ? static_cast<int>(std::lround(steps)) : a.level;
 }
 
-std::vector<ElementId> LightLinks::followShares(std::optional<Clock::time_point> deadline) {
+std::vector<std::uint32_t> LightLinks::stepShares() {
     sizeTables();
-    std::vector<ElementId> changed;
+    std::vector<std::uint32_t> stepped;
     for (std::uint32_t l = 0; l < scene_.lights.size(); ++l) {
         Anchor& a = anchors_[l];
         if (!(a.intensity > 0.0)) {
             // Dark when linked: its first positive intensity is its anchor
-            // (refreshIntensity linked it at that intensity).
+            // (refreshIntensity links it at that intensity).
             const double now = luminance(scene_.lights[l].intensity);
             if (now > 0.0) a = Anchor{now, threshold_, 0};
             continue;
@@ -48,9 +48,9 @@ std::vector<ElementId> LightLinks::followShares(std::optional<Clock::time_point>
         const int level = shareLevel(l);
         if (level == a.level) continue;
         a.level = level;
-        for (ElementId e : relinkLight(l, deadline)) changed.push_back(e);
+        stepped.push_back(l);
     }
-    return changed;
+    return stepped;
 }
 
 const std::vector<LightLinks::LightLink>& LightLinks::linksOf(std::size_t light, std::uint32_t polygon) const {

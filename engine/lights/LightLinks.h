@@ -67,9 +67,9 @@ public:
     // Returns the polygon elements it reaches.
     std::vector<ElementId> refreshIntensity(std::uint32_t light);
     // After an edit (an intensity, or the threshold with the emitted power):
-    // each light whose share of the light stepped (see judgedIntensity) is
-    // linked again. Returns the polygon elements whose direct light changed.
-    std::vector<ElementId> followShares(std::optional<Clock::time_point> deadline);
+    // the lights whose share of the light stepped (see judgedIntensity), at
+    // their new level; each is to be linked again (relinkLight).
+    std::vector<std::uint32_t> stepShares();
     // The polygons in front of some light whose shaft toward it meets one of
     // the boxes.
     std::vector<std::uint32_t> shadedBy(const std::vector<Aabb>& boxes) const;

@@ -44,10 +44,14 @@ std::optional<std::vector<std::array<glm::dvec3, 4>>> rectanglesOf(
     const double tolerance = 1e-5 * std::max(glm::length(high - low), 1e-9);
     const glm::dvec3 origin = outline[0].first;
     const auto uv = [&](const glm::dvec3& p) { return glm::dvec2(glm::dot(p - origin, u), glm::dot(p - origin, v)); };
+    // The edges in the frame; those along v, for the inside test.
+    std::vector<std::pair<glm::dvec2, glm::dvec2>> flat, alongV;
     std::vector<double> us, vs;
     for (const auto& [a, b] : outline) {
         const glm::dvec2 pa = uv(a), pb = uv(b);
         if (std::abs(pa.x - pb.x) > tolerance && std::abs(pa.y - pb.y) > tolerance) return std::nullopt;  // diagonal
+        flat.emplace_back(pa, pb);
+        if (std::abs(pa.x - pb.x) <= tolerance) alongV.emplace_back(pa, pb);
         us.push_back(pa.x);
         vs.push_back(pa.y);
     }
@@ -62,11 +66,8 @@ std::optional<std::vector<std::array<glm::dvec3, 4>>> rectanglesOf(
         for (std::size_t i = 0; i < nx; ++i) {
             const glm::dvec2 c(0.5 * (xs[i] + xs[i + 1]), 0.5 * (ys[j] + ys[j + 1]));
             bool odd = false;
-            for (const auto& [a, b] : outline) {
-                const glm::dvec2 pa = uv(a), pb = uv(b);
-                if (std::abs(pa.x - pb.x) > tolerance) continue;  // along u
+            for (const auto& [pa, pb] : alongV)
                 if (pa.x > c.x && (pa.y > c.y) != (pb.y > c.y)) odd = !odd;
-            }
             inside[j * nx + i] = odd;
             if (odd) covered += (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]);
         }
@@ -74,10 +75,9 @@ std::optional<std::vector<std::array<glm::dvec3, 4>>> rectanglesOf(
     // The outline's own vertices, by grid point, so that corners on the
     // outline keep their positions exactly.
     std::map<std::pair<std::size_t, std::size_t>, glm::dvec3> vertex;
-    for (const auto& [a, b] : outline) {
-        const glm::dvec2 p = uv(a);
-        vertex.emplace(std::pair(indexOf(xs, p.x, tolerance), indexOf(ys, p.y, tolerance)), a);
-    }
+    for (std::size_t k = 0; k < outline.size(); ++k)
+        vertex.emplace(std::pair(indexOf(xs, flat[k].first.x, tolerance), indexOf(ys, flat[k].first.y, tolerance)),
+                       outline[k].first);
     const auto corner = [&](std::size_t i, std::size_t j) {
         const auto it = vertex.find({i, j});
         return it != vertex.end() ? it->second : origin + xs[i] * u + ys[j] * v;
