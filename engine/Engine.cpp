@@ -1060,9 +1060,11 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     }
     for (std::uint32_t light : stepped)
         for (ElementId e : s.lightLinks.relinkLight(light, s.lightDeadline(start, settings, 0.0))) changed.push_back(e);
+    // Summed again whether linked again or not: a relink sums only the
+    // polygons whose links changed, and an edited light's others still hold
+    // its old intensity.
     for (std::uint32_t light : editedLights)
-        if (std::find(stepped.begin(), stepped.end(), light) == stepped.end())  // linked again: summed there
-            for (ElementId e : s.lightLinks.refreshIntensity(light)) changed.push_back(e);
+        for (ElementId e : s.lightLinks.refreshIntensity(light)) changed.push_back(e);
     if (changed.empty()) return FrameStats{};  // the values they already have: nothing changes
     if (!editedLights.empty() || !stepped.empty()) {
         s.updater.noteLightChanges(s.lightLinks.takeChanges());

@@ -188,6 +188,11 @@ Scene twoBulbs(const TempDir& dir, double bulb, double side, const std::string& 
     GltfBuilder g;
     addSquare(g, "floor", kA, 0.0, true, g.addGrey("grey", kRho));
     addSquare(g, "blocker", kB, kY, true, g.addGrey("black", 0.0));
+    // A small far tile, linked alike at any of these intensities: a relink
+    // leaves its links as they were.
+    const std::vector<glm::vec3> far = {{3, 0, 3}, {3, 0, 3.1f}, {3.1f, 0, 3.1f}, {3.1f, 0, 3}};
+    g.addNode("\"name\":\"far\",\"mesh\":" +
+              std::to_string(g.addMesh("far", g.addPositions(far), g.addIndices({0, 1, 2, 0, 2, 3}), g.addGrey("far", kRho))));
     addLights(g, "[{\"type\":\"point\",\"intensity\":" + number(bulb) + "},{\"type\":\"point\",\"intensity\":" +
                      number(side) + "}]");
     addLightNode(g, "bulb", 0, {0.0, kH, 0.0});
@@ -210,6 +215,8 @@ TEST(PunctualLight, ABrightenedLightIsRefinedByItsNewShare) {
     Engine fresh(twoBulbs(dir, 10.0, 10.0, "bright.gltf"), EngineSettings{});
     ASSERT_TRUE(fresh.solve().converged);
     const SolutionError e = compareSamples(engine.samples(), fresh.samples());
+    EXPECT_NEAR(floorRadiosity(engine, "far"), floorRadiosity(fresh, "far"), 1e-6 * floorRadiosity(fresh, "far"))
+        << "the far tile's links did not change, its light did";
     std::printf("  brightened: rms %.5f max %.4f against a solve at that intensity; light links %zu -> %zu bytes\n",
                 e.rms, e.max, before.links, engine.memory().links);
     EXPECT_LT(e.rms, 1e-4);  // measured 0: linked as the solve links it (46% rms before)
