@@ -64,12 +64,16 @@ TEST(LineSpaceUpdate, IncrementalMatchesFullSolveInOffice) {
         if (step == 2) stepMotion = stepMotion * rotationAbout(engine.scene().objectBounds(chair).center(), V(0, 1, 0), 20.0);
         delta = stepMotion * delta;
         const FrameStats f = engine.moveDynamicObject(delta * start0);
-        double fullSeconds = 0.0;
-        const SolutionError e = compareWithFullSolve(engine, settings, &fullSeconds);
-        std::printf("  step %d: rms %.5f max %.4f, full solve %.2f s\n", step, e.rms, e.max, fullSeconds);
         printFrame("frame", f);
-        RecordProperty("rms_step" + std::to_string(step), std::to_string(e.rms));
-        EXPECT_LE(e.rms, 0.01) << "step " << step;
+        // A full solve (15 to 20 s under the sanitizers) after the turn and
+        // after the last step, where the first step's errors would show too.
+        if (step >= 2) {
+            double fullSeconds = 0.0;
+            const SolutionError e = compareWithFullSolve(engine, settings, &fullSeconds);
+            std::printf("  step %d: rms %.5f max %.4f, full solve %.2f s\n", step, e.rms, e.max, fullSeconds);
+            RecordProperty("rms_step" + std::to_string(step), std::to_string(e.rms));
+            EXPECT_LE(e.rms, 0.01) << "step " << step;
+        }
         EXPECT_GT(f.shaftTests, 0u) << "step " << step;
         EXPECT_GT(f.linksUpdated, 0u) << "step " << step;
         ASSERT_GT(f.links, 0u);
