@@ -54,6 +54,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
          {{"traversal", st.traversalSeconds},
           {"update", st.updateSeconds},
           {"push_pull", st.pushPullSeconds},
+          {"bounces", st.bounceSeconds},
           {"move", st.moveSeconds},
           {"snapshot", st.snapshotSeconds},
           {"total", st.totalSeconds}}},

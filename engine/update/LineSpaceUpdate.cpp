@@ -205,15 +205,19 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
         },
         std::plus<>());
     stats.elements = h_.liveCount();
-    stats.pending = pending_.size();
-    stats.stale = stale_.size();
-    stats.unsent = unsent_.size() + waiting_.size() + solver_.unpushed().size();
+    countWaiting(stats);
     // The light changes whose push has been made are in the solution now.
     std::vector<ElementId> unpushed = solver_.unpushed();
     std::sort(unpushed.begin(), unpushed.end());
     std::erase_if(lightChanges_, [&](const auto& c) { return !std::binary_search(unpushed.begin(), unpushed.end(), c.first); });
     stats.estimatedError = estimatedError();
     stats.totalSeconds = secondsSince(start);
+}
+
+void LineSpaceUpdate::countWaiting(FrameStats& stats) const {
+    stats.pending = pending_.size();
+    stats.stale = stale_.size();
+    stats.unsent = unsent_.size() + waiting_.size() + solver_.unpushed().size();
 }
 
 double LineSpaceUpdate::motionShare(const Aabb& from, const Aabb& to) {

@@ -126,6 +126,9 @@ public:
     // that share (a deferred move: the light its links carry, in the share
     // of its size the object has moved).
     double estimatedError(const std::vector<std::pair<ElementId, double>>& deferred = {}) const;
+    // What waits for later frames and idle time: FrameStats::pending, stale
+    // and unsent as they stand.
+    void countWaiting(FrameStats& stats) const;
     // Elements whose direct light (punctual lights) changed, each with how
     // much that moves its radiosity once pushed (LightLinks::takeChanges):
     // while a deadline defers their push, the estimate counts it.

@@ -37,11 +37,13 @@ TEST(CliAnimate, ReportsEveryFrameAndMatchesAFullSolve) {
     for (int f = 1; f <= 3; ++f) {
         const json& frame = frames[f - 1];
         EXPECT_EQ(jsonAt(frame, "/frame"), f);
-        for (const char* key : {"/seconds/traversal", "/seconds/update", "/seconds/push_pull", "/seconds/move",
-                                "/seconds/total", "/full_solve_seconds"}) {
+        for (const char* key : {"/seconds/traversal", "/seconds/update", "/seconds/push_pull", "/seconds/bounces",
+                                "/seconds/move", "/seconds/total", "/full_solve_seconds"}) {
             EXPECT_TRUE(jsonAt(frame, key).is_number()) << key << " frame " << f;
             EXPECT_GE(jsonAt(frame, key), 0.0) << key << " frame " << f;
         }
+        // The bounces are a part of the push-pull phase.
+        EXPECT_LE(jsonAt(frame, "/seconds/bounces").get<double>(), jsonAt(frame, "/seconds/push_pull").get<double>());
         for (const char* key : {"/shaft_tests", "/candidates", "/links_updated", "/reinstated", "/refined",
                                 "/changed_elements", "/changed_leaves", "/links", "/elements", "/spent", "/pending"}) {
             EXPECT_TRUE(jsonAt(frame, key).is_number_integer()) << key << " frame " << f;

@@ -287,17 +287,23 @@ TEST(StabilityControlledUpdate, MovesWithoutTimeForTheTraversalWaitAndCoalesce) 
     past.deadlineSeconds = 0.0;
     // The first two moves measure the traversal (the first runs on cold
     // caches: one is not enough to go by).
+    std::size_t stale = 0;
     for (const double x : {0.05, 0.1}) {
         const FrameStats f = late.moveDynamicObject(translation(V(x, 0.0, x / 2.0)), past);
         EXPECT_EQ(f.deferred, 0u);
         EXPECT_GT(f.shaftTests, 0u);
+        stale = f.stale;
     }
+    // The deadline passed before any link update: the links found wait, stale.
+    EXPECT_GT(stale, 0u);
     const FrameStats second = late.moveDynamicObject(translation(V(0.25, 0.0, 0.1)), past);
     const FrameStats third = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past);
     for (const FrameStats& f : {second, third}) {
         EXPECT_EQ(f.deferred, 1u);
         EXPECT_EQ(f.shaftTests, 0u);
         EXPECT_GT(f.estimatedError, 0.0);
+        // A deferred frame says what still waits (it once said 0).
+        EXPECT_EQ(f.stale, stale);
     }
     const FrameStats idle = late.refinePending();
     EXPECT_EQ(idle.deferred, 0u);

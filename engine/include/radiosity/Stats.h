@@ -91,6 +91,9 @@ struct FrameStats {
     double traversalSeconds = 0.0;  // shaft tests and descent (sec. 4.1)
     double updateSeconds = 0.0;     // every link recompute, and refinement
     double pushPullSeconds = 0.0;  // partial push-pull and further bounces
+    // Of that, the further bounces: on a deadline they take what the frame
+    // has left, so the link-update budget's fit leaves them out.
+    double bounceSeconds = 0.0;
     // Before those: the object's polygons, H-elements, cluster sample points
     // and ray-casting layer moved, the obstacles found (Engine).
     double moveSeconds = 0.0;
