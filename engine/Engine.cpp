@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <fstream>
 #include <limits>
@@ -44,6 +45,12 @@ constexpr double kRoundTolerance = 3e-3;
 // The share of a frame's time (after the move and the mesh's fixed part)
 // the first traversal may take: the rest goes to the link updates it finds.
 constexpr double kTraversalShare = 0.75;
+// How far from the scene as loaded, in its sizes, an object or light may be
+// moved. Rays are traced in single precision in that scene's frame
+// (RayCaster::setFrame), and Embree rejects rays past about 1e18 of its
+// sizes (an assertion, then an abort); at 1,000 sizes a point is still
+// placed to a ten-thousandth of the scene's size.
+constexpr double kReach = 1000.0;
 
 double totalArea(const Scene& scene) {
     double a = 0.0;
@@ -125,6 +132,7 @@ struct Engine::State {
     Hierarchy hierarchy;
     LinkStore links;
     RayCaster rays;
+    Aabb frame;  // the scene's box as loaded: the rays' frame
     Refiner refiner;
     Solver solver;
     LineSpaceUpdate updater;
@@ -283,7 +291,8 @@ Engine::Engine(Scene scene, const EngineSettings& settings) {
             dynamicObject = o;
             break;
         }
-    s.rays.setFrame(s.scene.bounds());
+    s.frame = s.scene.bounds();
+    s.rays.setFrame(s.frame);
     s.solver.setEnergyGuard(settings.energyGuard);
     s.chooseDynamic(dynamicObject);
     s.stats.polygons = s.scene.polygons.size();
@@ -758,6 +767,23 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
             for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]) && std::isfinite(motion[i][j]);
         if (!rigid)
             throw std::invalid_argument("the transform of '" + name + "' is not a finite rigid motion (rotation and translation)");
+        const glm::dvec3 centre = s.frame.center();
+        const glm::dvec3 extent = s.frame.extent();
+        const double size = std::max({1e-300, extent.x, extent.y, extent.z});
+        const Aabb box = light ? Aabb{s.scene.lights[*light].position, s.scene.lights[*light].position}
+                               : s.scene.objectBounds(*object);
+        double farthest = 0.0;
+        for (int k = 0; k < 8; ++k) {
+            const glm::dvec3 corner(k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z);
+            const glm::dvec3 d = glm::abs(glm::dvec3(motion * glm::dvec4(corner, 1.0)) - centre);
+            farthest = std::max({farthest, d.x, d.y, d.z});
+        }
+        if (!(farthest <= kReach * size)) {
+            char what[160];
+            std::snprintf(what, sizeof what, "%.3g m from the scene's centre, more than %.0f times the scene's size (%.3g m)",
+                          farthest, kReach, size);
+            throw std::invalid_argument("'" + name + "' would be moved " + what + ": its rays cannot be traced there");
+        }
         if (light)
             lights.emplace_back(*light, worldFromLocal);
         else

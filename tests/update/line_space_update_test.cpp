@@ -257,6 +257,9 @@ TEST(LineSpaceUpdate, RejectsNonRigidTransforms) {
         {"infinite", withInf},
         {"all NaN", glm::dmat4(nan)},
         {"zero", glm::dmat4(0.0)},
+        // Finite and rigid, but where no ray can be traced (Embree aborted).
+        {"1e30 m away", translation(V(1e30, 0.0, 0.0))},
+        {"a million metres away", translation(V(0.0, 0.0, 1e6))},
     };
     for (const auto& b : bad) {
         EXPECT_THROW(engine.moveDynamicObject(b.m), std::invalid_argument) << b.name;

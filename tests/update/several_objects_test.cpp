@@ -82,6 +82,9 @@ TEST(SeveralObjects, BadMovesAreRefusedByName) {
     EXPECT_NE(message({{"nobody", glm::dmat4(1.0)}}).find("nobody"), std::string::npos);
     EXPECT_NE(message({{"block", glm::dmat4(1.0)}, {"block", glm::dmat4(1.0)}}).find("twice"), std::string::npos);
     EXPECT_NE(message({{"block", glm::scale(glm::dmat4(1.0), V(2.0))}}).find("rigid"), std::string::npos);
+    const std::string far = message({{"block", glm::translate(glm::dmat4(1.0), V(1e30, 0.0, 0.0))}});
+    EXPECT_NE(far.find("'block'"), std::string::npos) << far;
+    EXPECT_NE(far.find("cannot be traced"), std::string::npos) << far;
 }
 
 }  // namespace
