@@ -44,13 +44,14 @@ std::optional<std::vector<std::array<glm::dvec3, 4>>> rectanglesOf(
     const double tolerance = 1e-5 * std::max(glm::length(high - low), 1e-9);
     const glm::dvec3 origin = outline[0].first;
     const auto uv = [&](const glm::dvec3& p) { return glm::dvec2(glm::dot(p - origin, u), glm::dot(p - origin, v)); };
-    // The edges in the frame; those along v, for the inside test.
-    std::vector<std::pair<glm::dvec2, glm::dvec2>> flat, alongV;
+    // The edges' starts in the frame; the edges along v, for the inside test.
+    std::vector<glm::dvec2> starts;
+    std::vector<std::pair<glm::dvec2, glm::dvec2>> alongV;
     std::vector<double> us, vs;
     for (const auto& [a, b] : outline) {
         const glm::dvec2 pa = uv(a), pb = uv(b);
         if (std::abs(pa.x - pb.x) > tolerance && std::abs(pa.y - pb.y) > tolerance) return std::nullopt;  // diagonal
-        flat.emplace_back(pa, pb);
+        starts.push_back(pa);
         if (std::abs(pa.x - pb.x) <= tolerance) alongV.emplace_back(pa, pb);
         us.push_back(pa.x);
         vs.push_back(pa.y);
@@ -76,7 +77,7 @@ std::optional<std::vector<std::array<glm::dvec3, 4>>> rectanglesOf(
     // outline keep their positions exactly.
     std::map<std::pair<std::size_t, std::size_t>, glm::dvec3> vertex;
     for (std::size_t k = 0; k < outline.size(); ++k)
-        vertex.emplace(std::pair(indexOf(xs, flat[k].first.x, tolerance), indexOf(ys, flat[k].first.y, tolerance)),
+        vertex.emplace(std::pair(indexOf(xs, starts[k].x, tolerance), indexOf(ys, starts[k].y, tolerance)),
                        outline[k].first);
     const auto corner = [&](std::size_t i, std::size_t j) {
         const auto it = vertex.find({i, j});
