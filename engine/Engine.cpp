@@ -738,6 +738,48 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     return moveObjects(moves, settings, true);
 }
 
+void Engine::checkMove(const std::string& name, const glm::dmat4& worldFromLocal) const {
+    const State& s = *state_;
+    const std::optional<std::uint32_t> light = s.scene.findLight(name);
+    const std::optional<std::uint32_t> object = s.scene.findObject(name);
+    if (!light && (!object || s.hierarchy.objectCluster(*object) == kNone))
+        throw std::invalid_argument("no object '" + name + "' with polygons and no light of that name in " +
+                                    s.scene.sourcePath);
+    // The motion from where it stands must be rigid; its node's own
+    // transform may scale or mirror it (as tools write them).
+    const glm::dmat4& current =
+        light ? s.scene.lights[*light].worldFromLocal : s.scene.objects[*object].worldFromLocal;
+    const glm::dmat4 motion = worldFromLocal * glm::inverse(current);
+    const glm::dmat3 r(motion);
+    const glm::dmat3 rtr = glm::transpose(r) * r;
+    bool rigid = std::abs(glm::determinant(r) - 1.0) < 1e-6 && std::abs(motion[0][3]) < 1e-9 &&
+                 std::abs(motion[1][3]) < 1e-9 && std::abs(motion[2][3]) < 1e-9 &&
+                 std::abs(motion[3][3] - 1.0) < 1e-9;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) rigid = rigid && std::abs(rtr[i][j] - (i == j ? 1.0 : 0.0)) < 1e-6;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]) && std::isfinite(motion[i][j]);
+    if (!rigid)
+        throw std::invalid_argument("the transform of '" + name + "' is not a finite rigid motion (rotation and translation)");
+    const glm::dvec3 centre = s.frame.center();
+    const glm::dvec3 extent = s.frame.extent();
+    const double size = std::max({1e-300, extent.x, extent.y, extent.z});
+    const Aabb box = light ? Aabb{s.scene.lights[*light].position, s.scene.lights[*light].position}
+                           : s.scene.objectBounds(*object);
+    double farthest = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 corner(k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z);
+        const glm::dvec3 d = glm::abs(glm::dvec3(motion * glm::dvec4(corner, 1.0)) - centre);
+        farthest = std::max({farthest, d.x, d.y, d.z});
+    }
+    if (!(farthest <= kReach * size)) {
+        char what[160];
+        std::snprintf(what, sizeof what, "%.3g m from the scene's centre, more than %.0f times the scene's size (%.3g m)",
+                      farthest, kReach, size);
+        throw std::invalid_argument("'" + name + "' would be moved " + what + ": its rays cannot be traced there");
+    }
+}
+
 FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dmat4>>& moves,
                                const UpdateSettings& settings, bool allowDeferral) {
     State& s = *state_;
@@ -746,44 +788,9 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     for (const auto& [name, worldFromLocal] : moves) {
         for (const auto& [other, m] : moves)
             if (&other != &name && other == name) throw std::invalid_argument("'" + name + "' is moved twice in one frame");
+        checkMove(name, worldFromLocal);
         const std::optional<std::uint32_t> light = s.scene.findLight(name);
         const std::optional<std::uint32_t> object = s.scene.findObject(name);
-        if (!light && (!object || s.hierarchy.objectCluster(*object) == kNone))
-            throw std::invalid_argument("no object '" + name + "' with polygons and no light of that name in " +
-                                        s.scene.sourcePath);
-        // The motion from where it stands must be rigid; its node's own
-        // transform may scale or mirror it (as tools write them).
-        const glm::dmat4& current =
-            light ? s.scene.lights[*light].worldFromLocal : s.scene.objects[*object].worldFromLocal;
-        const glm::dmat4 motion = worldFromLocal * glm::inverse(current);
-        const glm::dmat3 r(motion);
-        const glm::dmat3 rtr = glm::transpose(r) * r;
-        bool rigid = std::abs(glm::determinant(r) - 1.0) < 1e-6 && std::abs(motion[0][3]) < 1e-9 &&
-                     std::abs(motion[1][3]) < 1e-9 && std::abs(motion[2][3]) < 1e-9 &&
-                     std::abs(motion[3][3] - 1.0) < 1e-9;
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) rigid = rigid && std::abs(rtr[i][j] - (i == j ? 1.0 : 0.0)) < 1e-6;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]) && std::isfinite(motion[i][j]);
-        if (!rigid)
-            throw std::invalid_argument("the transform of '" + name + "' is not a finite rigid motion (rotation and translation)");
-        const glm::dvec3 centre = s.frame.center();
-        const glm::dvec3 extent = s.frame.extent();
-        const double size = std::max({1e-300, extent.x, extent.y, extent.z});
-        const Aabb box = light ? Aabb{s.scene.lights[*light].position, s.scene.lights[*light].position}
-                               : s.scene.objectBounds(*object);
-        double farthest = 0.0;
-        for (int k = 0; k < 8; ++k) {
-            const glm::dvec3 corner(k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z);
-            const glm::dvec3 d = glm::abs(glm::dvec3(motion * glm::dvec4(corner, 1.0)) - centre);
-            farthest = std::max({farthest, d.x, d.y, d.z});
-        }
-        if (!(farthest <= kReach * size)) {
-            char what[160];
-            std::snprintf(what, sizeof what, "%.3g m from the scene's centre, more than %.0f times the scene's size (%.3g m)",
-                          farthest, kReach, size);
-            throw std::invalid_argument("'" + name + "' would be moved " + what + ": its rays cannot be traced there");
-        }
         if (light)
             lights.emplace_back(*light, worldFromLocal);
         else

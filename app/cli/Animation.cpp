@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "cli/Args.h"
 #include "cli/ProgressLines.h"
 
 namespace rad::cli {
@@ -14,6 +15,14 @@ namespace {
 
 double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// Where a move starts: the object's or light's transform, and the point it
+// turns about (a light's position, an object's box centre).
+std::pair<glm::dmat4, glm::dvec3> motionStart(const Scene& scene, const std::string& name) {
+    if (const auto light = scene.findLight(name)) return {scene.lights[*light].worldFromLocal, scene.lights[*light].position};
+    const std::uint32_t object = *scene.findObject(name);
+    return {scene.objects[object].worldFromLocal, scene.objectBounds(object).center()};
 }
 
 }  // namespace
@@ -76,6 +85,18 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
             throw std::runtime_error(scene.sourcePath + ": no object named '" + e.object + "' with polygons");
         startOf.push_back(engine.scene().materials[engine.scene().polygons[engine.scene().objects[*o].firstPolygon].material]);
     }
+    // Every frame's move is checked before the solve: a script that takes an
+    // object out of the rays' reach fails at once, not after the solve.
+    for (const ObjectMove& m : moves) {
+        const auto [from, about] = motionStart(engine.scene(), m.object);
+        for (int f = 1; f <= frames; ++f) {
+            try {
+                engine.checkMove(m.object, m.motion.at(double(f) / frames, about, from));
+            } catch (const std::invalid_argument& e) {
+                throw UsageError("frame " + std::to_string(f) + ": " + e.what());
+            }
+        }
+    }
     const auto start = std::chrono::steady_clock::now();
     engine.solve(progressOnStderr("solve"));
     run.solveSeconds = secondsSince(start);
@@ -97,15 +118,9 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
         } catch (const std::invalid_argument& e) {
             throw std::runtime_error(e.what());
         }
-        // A light turns about its position, an object about its box's centre.
-        if (const auto light = engine.scene().findLight(moves[k].object)) {
-            startTransform.push_back(engine.scene().lights[*light].worldFromLocal);
-            center.push_back(engine.scene().lights[*light].position);
-        } else {
-            const std::uint32_t object = *engine.scene().findObject(moves[k].object);
-            startTransform.push_back(engine.scene().objects[object].worldFromLocal);
-            center.push_back(engine.scene().objectBounds(object).center());
-        }
+        const auto [from, about] = motionStart(engine.scene(), moves[k].object);
+        startTransform.push_back(from);
+        center.push_back(about);
     }
     if (onFrame) {
         FrameRecord chosen;

@@ -181,6 +181,9 @@ TEST(CliScript, BadScriptsFailWithOneLineNamingTheAction) {
         {R"({"frames": 0, "actions": [{"object": "light", "translate": [0, 0, 1]}]})", "frames"},
         {R"({"frames": 2, "actions": [{"object": "light", "translate": [0, 0, 1]})", "JSON"},
         {R"({"frames": 2, "actions": [{"object": "light", "emission": [1e309, 0, 0]}]})", "JSON"},
+        // Out of the rays' reach (Embree aborted on such a move).
+        {R"({"frames": 2, "actions": [{"object": "tall-block", "translate": [1e30, 0, 0]}]})",
+         "frame 1: 'tall-block' would be moved"},
     };
     for (const auto& c : cases) {
         const auto r = run(c.script);
@@ -188,6 +191,9 @@ TEST(CliScript, BadScriptsFailWithOneLineNamingTheAction) {
         EXPECT_NE(r.output.find(c.says), std::string::npos) << c.script << "\n" << r.output;
         EXPECT_EQ(r.output.find("error:"), r.output.rfind("error:")) << "one error line: " << r.output;
     }
+    // A move out of reach is found before the solve, not when its frame comes.
+    const auto far = run(R"({"frames": 2, "actions": [{"object": "tall-block", "translate": [1e30, 0, 0]}]})");
+    EXPECT_EQ(far.output.find("solve"), std::string::npos) << far.output;
     // --script stands for the motion options.
     const auto r = runCli("animate " + shellQuote(kCornell) + " --script " +
                           shellQuote(writeScript(dir, "ok.json", R"({"frames": 1, "actions": [{"object": "light", "emission": [1, 1, 1]}]})")) +

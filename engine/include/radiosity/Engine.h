@@ -83,6 +83,12 @@ public:
     // them for one move from where they were last updated.
     FrameStats moveObjects(const std::vector<std::pair<std::string, glm::dmat4>>& moves,
                            const UpdateSettings& settings = {});
+    // What moveObjects checks of one move, before or after the solve:
+    // throws std::invalid_argument naming the object or light when there is
+    // none of that name, when the motion from where it stands is not finite
+    // and rigid, or when it would take it more than 1,000 times the scene's
+    // size from the scene as loaded (its rays could not be traced there).
+    void checkMove(const std::string& name, const glm::dmat4& worldFromLocal) const;
 
     // Changes the emission and/or the reflectance of one object (every
     // surface element of its polygons, and the object's own copy of its
