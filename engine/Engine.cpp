@@ -132,7 +132,6 @@ struct Engine::State {
     Hierarchy hierarchy;
     LinkStore links;
     RayCaster rays;
-    Aabb frame;  // the scene's box as loaded: the rays' frame
     Refiner refiner;
     Solver solver;
     LineSpaceUpdate updater;
@@ -291,8 +290,7 @@ Engine::Engine(Scene scene, const EngineSettings& settings) {
             dynamicObject = o;
             break;
         }
-    s.frame = s.scene.bounds();
-    s.rays.setFrame(s.frame);
+    s.rays.setFrame(s.scene.bounds());
     s.solver.setEnergyGuard(settings.energyGuard);
     s.chooseDynamic(dynamicObject);
     s.stats.polygons = s.scene.polygons.size();
@@ -761,21 +759,18 @@ void Engine::checkMove(const std::string& name, const glm::dmat4& worldFromLocal
         for (int j = 0; j < 4; ++j) rigid = rigid && std::isfinite(worldFromLocal[i][j]) && std::isfinite(motion[i][j]);
     if (!rigid)
         throw std::invalid_argument("the transform of '" + name + "' is not a finite rigid motion (rotation and translation)");
-    const glm::dvec3 centre = s.frame.center();
-    const glm::dvec3 extent = s.frame.extent();
-    const double size = std::max({1e-300, extent.x, extent.y, extent.z});
     const Aabb box = light ? Aabb{s.scene.lights[*light].position, s.scene.lights[*light].position}
                            : s.scene.objectBounds(*object);
     double farthest = 0.0;
     for (int k = 0; k < 8; ++k) {
         const glm::dvec3 corner(k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z);
-        const glm::dvec3 d = glm::abs(glm::dvec3(motion * glm::dvec4(corner, 1.0)) - centre);
-        farthest = std::max({farthest, d.x, d.y, d.z});
+        farthest = std::max(farthest, s.rays.framesFromCentre(glm::dvec3(motion * glm::dvec4(corner, 1.0))));
     }
-    if (!(farthest <= kReach * size)) {
+    if (!(farthest <= kReach)) {
+        const double size = s.rays.frameSize();
         char what[160];
         std::snprintf(what, sizeof what, "%.3g m from the scene's centre, more than %.0f times the scene's size (%.3g m)",
-                      farthest, kReach, size);
+                      farthest * size, kReach, size);
         throw std::invalid_argument("'" + name + "' would be moved " + what + ": its rays cannot be traced there");
     }
 }

@@ -441,6 +441,13 @@ std::uint16_t RayCaster::blocked(Layer layer, std::span<const Segment> segments)
 
 double RayCaster::coincidenceTolerance() const { return coincidenceOfSize * impl_->size; }
 
+double RayCaster::framesFromCentre(const glm::dvec3& p) const {
+    const glm::dvec3 d = glm::abs(p - impl_->origin) * impl_->scale;
+    return std::max({d.x, d.y, d.z});
+}
+
+double RayCaster::frameSize() const { return impl_->size; }
+
 std::optional<RayCaster::Hit> RayCaster::intersect(const glm::dvec3& origin,
                                                    const glm::dvec3& direction, double tmax) const {
     if (!(tmax > 0.0) || direction == glm::dvec3(0.0)) return std::nullopt;

@@ -44,6 +44,10 @@ class RayCaster {
     // The region the layers live in (the scene's bounds): set before the
     // layers, it makes the float ray casting independent of the scene's scale.
     void setFrame(const Aabb& bounds);
+    // How far `p` lies from the frame's centre, in the frame's size (its
+    // largest extent), along the farthest axis.
+    double framesFromCentre(const glm::dvec3& p) const;
+    double frameSize() const;
 
     // A visibility ray: a segment between two points on surfaces, and the
     // input polygons they lie on (kNoPolygon when not on one).
