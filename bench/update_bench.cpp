@@ -150,8 +150,12 @@ BENCHMARK_CAPTURE(TwoChairs, office, "office.gltf")->Arg(2)->Unit(benchmark::kSe
 // push-pull from the edited elements, the further bounces, refinement that
 // follows the light and the snapshot; the error of the last frame against a
 // from-scratch solve of the edited scene.
+// range(1): 1 sends each step's light as c times the last step's
+// (UpdateSettings::scaleLastEdit), 0 by bounces alone.
 void LightDim(benchmark::State& state, const char* scene, const char* light) {
     const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
+    rad::UpdateSettings settings;
+    settings.scaleLastEdit = state.range(1) != 0;
     const rad::Scene loaded = rad::loadGltf(std::string(RADIOSITY_SOURCE_DIR) + "/scenes/" + scene);
     std::vector<double> total, snapshot, update, pushPull;
     double rms = 0.0;
@@ -162,7 +166,7 @@ void LightDim(benchmark::State& state, const char* scene, const char* light) {
         const glm::dvec3 emission =
             engine.scene().materials[engine.scene().polygons[engine.scene().objects[object].firstPolygon].material].emission;
         for (int f = 1; f <= kFrames; ++f) {
-            const rad::FrameStats fs = engine.editMaterial(light, emission * (1.0 - double(f) / kFrames), std::nullopt);
+            const rad::FrameStats fs = engine.editMaterial(light, emission * (1.0 - double(f) / kFrames), std::nullopt, settings);
             total.push_back(fs.totalSeconds);
             snapshot.push_back(fs.snapshotSeconds);
             update.push_back(fs.updateSeconds);
@@ -186,6 +190,10 @@ void LightDim(benchmark::State& state, const char* scene, const char* light) {
     state.counters["rms_vs_full_last"] = rms;
 }
 
-BENCHMARK_CAPTURE(LightDim, office, "office.gltf", "light-1")->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(LightDim, office, "office.gltf", "light-1")
+    ->Args({2, 1})
+    ->Args({2, 0})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 }  // namespace

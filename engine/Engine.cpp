@@ -1030,10 +1030,15 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     }
     std::vector<ElementId> changed;
     std::vector<std::uint32_t> editedLights;
+    // What the edits change, if only emission (LineSpaceUpdate::propagate).
+    EmissionChange emission;
+    bool emissionOnly = true;
     for (const MaterialEdit& e : edits) {
         // A light's emission is its intensity (colour times intensity).
         if (const std::optional<std::uint32_t> light = s.scene.findLight(e.object)) {
             if (!e.emission || s.scene.lights[*light].intensity == *e.emission) continue;
+            emission.emplace_back(static_cast<std::uint32_t>(s.scene.polygons.size()) + *light,
+                                  *e.emission - s.scene.lights[*light].intensity);
             s.scene.lights[*light].intensity = *e.emission;
             editedLights.push_back(*light);  // summed again under the new threshold, below
             continue;
@@ -1061,10 +1066,13 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
             const std::uint32_t material =
                 e.restore.empty() ? copyOf[s.scene.polygons[p].material] : e.restore[p - o.firstPolygon];
             if (material == s.scene.polygons[p].material) continue;
+            const Material& was = s.scene.materials[s.scene.polygons[p].material];
             s.scene.polygons[p].material = material;
             const Material& m = s.scene.materials[material];
             const ElementId top = s.hierarchy.polygonElement(p);
             if (top == kNone) continue;
+            emissionOnly = emissionOnly && m.reflectance == was.reflectance;
+            if (m.emission != was.emission) emission.emplace_back(p, m.emission - was.emission);
             changed.push_back(top);
             s.hierarchy.touchMesh(p);  // its mesh's colours come from the leaves' reflectance too
             // Every element of its quadtree: the leaves reflect, and children
@@ -1106,7 +1114,8 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     }
     const double lightSeconds = secondsSince(start);
     const UpdateSettings inner = s.forUpdater(settings, lightSeconds);
-    FrameStats stats = s.updater.propagate(changed, inner);
+    std::sort(emission.begin(), emission.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    FrameStats stats = s.updater.propagate(changed, inner, emissionOnly ? &emission : nullptr);
     if (power > 0.0) s.updater.setLightScale(s.anchorPower / power);
     s.updater.judgeAgain(inner, stats);
     stats.updateSeconds += lightSeconds;  // the light links made again

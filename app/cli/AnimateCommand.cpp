@@ -76,6 +76,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
         {"changed_elements", st.changedElements},
         {"changed_leaves", st.changedLeaves},
         {"bounces", st.bounces},
+        {"transfers", st.transfers},
         {"links", st.links},
         {"elements", st.elements},
     };

@@ -45,6 +45,8 @@ void addFrame(FrameStats& into, const FrameStats& more) {
     into.traversalSeconds += more.traversalSeconds;
     into.updateSeconds += more.updateSeconds;
     into.pushPullSeconds += more.pushPullSeconds;
+    into.bounceSeconds += more.bounceSeconds;
+    into.moveSeconds += more.moveSeconds;
     into.snapshotSeconds += more.snapshotSeconds;
     into.totalSeconds += more.totalSeconds;
     into.spent += more.spent;
@@ -53,6 +55,7 @@ void addFrame(FrameStats& into, const FrameStats& more) {
     into.changedElements += more.changedElements;
     into.changedLeaves += more.changedLeaves;
     into.bounces += more.bounces;
+    into.transfers += more.transfers;
     into.links = more.links;
     into.elements = more.elements;
     into.pending = more.pending;

@@ -70,6 +70,9 @@ public:
 
     // Elements whose own irradiance changed since the last takeDirty().
     void markDirty(ElementId e);
+    // Dirty, and its irradiance is summed again from its links then (its
+    // links, or what their sources hold as gathered, changed).
+    void markStale(ElementId receiver);
     // Sums again the irradiance of the elements whose links changed, and
     // hands out the dirty elements (for a partial push-pull).
     std::vector<ElementId> takeDirty();
@@ -156,7 +159,6 @@ private:
     // root): its links are kept even when they carry nothing where it stands.
     bool touchesMovable(ElementId e) const;
     std::vector<std::pair<ElementId, ElementId>> childPairs(const Link& link);
-    void markStale(ElementId receiver);
     // Appends to a receiver's list, which is then out of source order.
     void append(std::vector<LinkId>& list, ElementId receiver, LinkId id);
 

@@ -143,6 +143,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         const bool sent = collectTransfers(visited, {threshold, sendAll, settings.moveBounceThreshold}, transfers,
                                            share < 1.0 || !settings.extrapolateBounces ? nullptr : &series, held);
         for (ElementId e : held) defer(e, h_[e].outLinks.size());
+        stats.transfers += transfers.size();
         if (!sent) break;
         // In the serial order, so that every irradiance gets the same sum.
         // Bound by memory: the receivers a few transfers ahead are asked for early.

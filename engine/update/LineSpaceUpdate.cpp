@@ -41,6 +41,7 @@ FrameStats LineSpaceUpdate::chooseObject(const Aabb& box, const IndexRange& rang
 
 FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
+    response_.clear();  // links change: what an edit sent no longer scales
     FrameStats stats;
     setDeadline(start, settings);
     ++frame_;
@@ -417,7 +418,8 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     return stats;
 }
 
-FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, const UpdateSettings& settings) {
+FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, const UpdateSettings& settings,
+                                      const EmissionChange* emission) {
     const auto start = std::chrono::steady_clock::now();
     editStart_ = start;
     FrameStats stats;
@@ -432,10 +434,52 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     // steps 3 and 4 of a move: nothing moved, so no link changes its form
     // factor; what changed is the light the links carry.
     for (ElementId e : elements) refiner_.markDirty(e);
+    // An emission edit proportional to the last one sends c times its light
+    // first; the bounces send what that misses (EditResponse.h).
+    std::vector<ElementId> guessed;
+    if (!emission) {
+        response_.clear();
+    } else {
+        const std::optional<glm::dvec3> c = settings.scaleLastEdit ? response_.scaleFor(*emission) : std::nullopt;
+        response_.begin(h_, *emission);
+        if (c) {
+            std::size_t links = 0;
+            response_.send(h_, *c, settings.bounceThreshold * referenceRadiosity_, [&](ElementId e) {
+                guessed.push_back(e);
+                links += h_[e].outLinks.size();
+            });
+            // Their receivers sum their irradiance again. When the guess
+            // leaves from much of the scene (a light reaches most of a
+            // room), every element is marked rather than each link's
+            // receiver found: reading 500,000 links scattered in memory to
+            // mark them took 24 ms of `office`'s 60.
+            if (links > links_.liveCount() / 4) {
+                for (ElementId e = 0; e < h_.size(); ++e)
+                    if (e == h_.root() || h_[e].parent != kNone) refiner_.markStale(e);
+            } else {
+                for (ElementId e : guessed)
+                    for (LinkId id : h_[e].outLinks) refiner_.markStale(links_[id].receiver);
+            }
+        }
+    }
     std::vector<ElementId> visited = pushPull(stats);
     recordOverlay(visited, false);
     touched_.insert(touched_.end(), visited.begin(), visited.end());
+    // The senders of the bounces are those that sent a guess (what they
+    // sent may not be what their radiosity came to) and those whose
+    // radiosity moved as a bounce's receivers would have to be pushed: not
+    // every element the push visited, which would send what the solve's
+    // last sweep left in each (0.07% of `office`'s light, against 1.5e-6
+    // for the bounces alone of an edit by a millionth).
+    if (!guessed.empty()) {
+        const double threshold = settings.bounceThreshold * referenceRadiosity_;
+        std::erase_if(visited, [&](ElementId e) { return !response_.movedSinceBegin(h_, e, threshold); });
+        visited.insert(visited.end(), guessed.begin(), guessed.end());
+        std::sort(visited.begin(), visited.end());
+        visited.erase(std::unique(visited.begin(), visited.end()), visited.end());
+    }
     bounce(std::move(visited), settings, stats);
+    if (response_.recording()) response_.keep(h_);
     stats.pushPullSeconds = secondsSince(start);
     return stats;  // judgeAgain finishes the frame
 }

@@ -23,6 +23,7 @@
 #include "links/Link.h"
 #include "radiosity/Settings.h"
 #include "radiosity/Stats.h"
+#include "update/EditResponse.h"
 
 namespace rad {
 
@@ -70,7 +71,11 @@ public:
     // The emission or reflectance of `elements` (and their subtrees)
     // changed: their radiosity is pushed again, the change goes out through
     // further bounces, and refinement follows the light, within the budget.
-    FrameStats propagate(const std::vector<ElementId>& elements, const UpdateSettings& settings);
+    // `emission`: the edit changed emission only, by this much; c times the
+    // last such edit's change sends c times its light at once
+    // (EditResponse.h). None: reflectance changed too.
+    FrameStats propagate(const std::vector<ElementId>& elements, const UpdateSettings& settings,
+                         const EmissionChange* emission = nullptr);
     // After such a change, refinement follows the light as after a move
     // (followTheLight: the oracles of what changed step, and the links of
     // those that stepped are judged again, within the budget). Adds to
@@ -276,6 +281,10 @@ private:
     };
     bool collectTransfers(const std::vector<ElementId>& visited, Thresholds threshold,
                           std::vector<Transfer>& transfers, BounceSeries* series, std::vector<ElementId>& held);
+
+    // The last emission edit's light (propagate), while nothing but
+    // emission changes: a move or a change of reflectance drops it.
+    EditResponse response_;
 
     Hierarchy& h_;
     LinkStore& links_;

@@ -96,6 +96,12 @@ struct UpdateSettings {
     // extrapolation, as SolveSettings::extrapolate; update/LineSpaceUpdate.h).
     // Off: plain bounces.
     bool extrapolateBounces = true;
+    // Radiosity is linear in the emission: an edit that changes the same
+    // emitters by c times the last edit's change (channel by channel, as a
+    // light dimmed on a slider) sends c times that edit's light at once,
+    // and the bounces send only what that misses (update/EditResponse.h).
+    // Off: bounces only.
+    bool scaleLastEdit = true;
 };
 
 }  // namespace rad

@@ -124,6 +124,7 @@ struct FrameStats {
     std::size_t links = 0;
     std::size_t elements = 0;
     int bounces = 0;
+    std::size_t transfers = 0;  // a sender's change carried by one link, over the bounces
     ReinsertionStats reinsertion;  // choosing a new dynamic object only
 };
 
