@@ -72,6 +72,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
         {"unsent", st.unsent},
         {"deferred", st.deferred},
         {"unmeshed", st.unmeshed},
+        {"finer", st.finer},
         {"estimated_error", st.estimatedError},
         {"changed_elements", st.changedElements},
         {"changed_leaves", st.changedLeaves},

@@ -62,6 +62,7 @@ void addFrame(FrameStats& into, const FrameStats& more) {
     into.stale = more.stale;
     into.unsent = more.unsent;
     into.unmeshed = more.unmeshed;
+    into.finer = more.finer;
     // An edit after a deferred move leaves the move deferred: what it
     // estimated stands.
     into.estimatedError = std::max(into.estimatedError, more.estimatedError);

@@ -61,7 +61,7 @@ struct EngineThread::Worker {
     std::deque<UpdateSample> history;
 
     // Earlier frames left work for idle time.
-    bool behind() const { return engine && frame.pending + frame.stale + frame.unsent + frame.deferred + frame.unmeshed > 0; }
+    bool behind() const { return engine && frame.pending + frame.stale + frame.unsent + frame.deferred + frame.unmeshed + frame.finer > 0; }
     double now() const {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
@@ -396,11 +396,11 @@ void EngineThread::run() {
                 w.frame = w.engine->refinePending(w.update(true));
             } catch (const std::exception& e) {
                 w.selectionNote = e.what();
-                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = w.frame.unmeshed = 0;
+                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = w.frame.unmeshed = w.frame.finer = 0;
             }
             if (w.frame.pending + w.frame.stale + w.frame.unmeshed >= before && w.frame.spent == 0 &&
                 w.frame.bounces == 0 && w.frame.shaftTests == 0)
-                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = w.frame.unmeshed = 0;  // no progress: stop
+                w.frame.pending = w.frame.stale = w.frame.unsent = w.frame.deferred = w.frame.unmeshed = w.frame.finer = 0;  // no progress: stop
             publish(true);
             continue;
         }

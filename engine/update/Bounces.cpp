@@ -323,7 +323,8 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, Th
     return !sources.empty();
 }
 
-void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats& stats, std::size_t budget) {
+void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats& stats, std::size_t budget,
+                                     bool coarsen) {
     // On a deadline, stepping the oracles of what the frame touched and
     // judging the links of those that stepped waits when it is not expected
     // to fit (at what it last took per element touched): the elements stay
@@ -343,14 +344,34 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     const std::size_t touched = touched_.size();
     const std::vector<ElementId> moved = stepOracles(h_, touched_, kOracleFloor * referenceRadiosity_, lightScale_);
     touched_.clear();
-    if (moved.empty()) return;
+    // Idle time also coarsens what edits left finer than their light asks.
+    std::vector<ElementId> coarser;
+    if (idle_) {
+        coarser.swap(coarsenLater_);
+        for (ElementId e : coarser) coarsenQueued_[e] = 0;
+    }
+    if (moved.empty() && coarser.empty()) return;
     const std::size_t spentBefore = stats.spent;
     RefineHeap heap;
     for (ElementId s : moved) {
         for (LinkId id : h_[s].outLinks)
             if (refiner_.wouldRefine(links_[id])) heap.push({heapKey(links_[id]), id});
-        // Refinement its new oracle no longer asks for goes (its line-space
-        // children with it).
+        // Back at the solve's level (an edit taken back), the solve's
+        // hierarchy returns at once.
+        if (coarsen || h_[s].level == 0) {
+            coarser.push_back(s);
+        } else if (!h_[s].outPlinks.empty()) {
+            if (coarsenQueued_.size() < h_.size()) coarsenQueued_.resize(h_.size(), 0);
+            if (!std::exchange(coarsenQueued_[s], 1)) coarsenLater_.push_back(s);
+        }
+    }
+    // Refinement the new oracle no longer asks for goes (its line-space
+    // children with it). An element queued for idle time may have been
+    // freed since (its id given to another): judged as it is now.
+    std::sort(coarser.begin(), coarser.end());
+    coarser.erase(std::unique(coarser.begin(), coarser.end()), coarser.end());
+    for (ElementId s : coarser) {
+        if (s != h_.root() && h_[s].parent == kNone) continue;
         for (LinkId id : std::vector<LinkId>(h_[s].outPlinks)) {
             const Link& l = links_[id];
             if (l.live && l.passive && l.source == s && !refiner_.wouldRefine(l)) {

@@ -218,6 +218,7 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
 void LineSpaceUpdate::countWaiting(FrameStats& stats) const {
     stats.pending = pending_.size();
     stats.stale = stale_.size();
+    stats.finer = coarsenLater_.size();
     stats.unsent = unsent_.size() + waiting_.size() + solver_.unpushed().size();
 }
 
@@ -492,7 +493,7 @@ void LineSpaceUpdate::judgeAgain(const UpdateSettings& settings, FrameStats& sta
     // instead (every link judged again), a light of `office` changed by a
     // millionth and set back was 0.38% rms from the solve, a desk recoloured
     // and given its materials back 0.39%.
-    followTheLight(settings, stats, settings.budget.value_or(kUnlimited));
+    followTheLight(settings, stats, settings.budget.value_or(kUnlimited), false);
     stats.updateSeconds += secondsSince(start);
     finish(stats, editStart_);
 }

@@ -114,7 +114,7 @@ TEST(MaterialEdit, ALightChangedAndTakenBackReturnsTheSolution) {
         engine.editMaterial(lamp, emission, std::nullopt);
         EXPECT_LT(compareSamples(engine.samples(), start).rms, 1e-7) << lamp << " changed by a millionth and back";
         const FrameStats halved = engine.editMaterial(lamp, emission * 0.5, std::nullopt);
-        EXPECT_GT(halved.reinstated + halved.refined, 0u) << lamp << ": halving it changes the refinement";
+        EXPECT_GT(halved.refined + halved.finer, 0u) << lamp << ": halving it changes the refinement";
         EXPECT_GT(compareSamples(engine.samples(), original).rms, 0.05) << lamp;
         engine.editMaterial(lamp, emission, std::nullopt);
         for (int idle = 0; idle < 10 && engine.refinePending().pending > 0; ++idle) {
@@ -122,6 +122,27 @@ TEST(MaterialEdit, ALightChangedAndTakenBackReturnsTheSolution) {
         EXPECT_LT(compareSamples(engine.samples(), original).rms, 0.001) << lamp << " halved and set back";
         EXPECT_NEAR(double(engine.linkCount()), double(links), 1e-3 * double(links)) << lamp;
     }
+}
+
+// An edit refines where its light grew at once, and leaves the p-links its
+// light no longer asks for to idle time: a light dimmed on a slider does not
+// pay on each frame for coarsening (and sending what each reinstated p-link
+// changes). Idle time coarsens them, and the solution is that of a full
+// solve of the dimmed scene.
+TEST(MaterialEdit, ADimmedLightIsCoarsenedInIdleTime) {
+    const EngineSettings settings;
+    Engine engine(twoLamps(), settings);
+    ASSERT_TRUE(engine.solve().converged);
+    const FrameStats dimmed = engine.editMaterial("light", V(2.0), std::nullopt);
+    EXPECT_EQ(dimmed.reinstated, 0u);
+    EXPECT_GT(dimmed.finer, 0u);
+    const std::size_t links = engine.linkCount();
+    const FrameStats idle = engine.refinePending();
+    EXPECT_GT(idle.reinstated, 0u);
+    EXPECT_EQ(idle.finer, 0u);
+    EXPECT_LT(engine.linkCount(), links);
+    const SolutionError e = test::compareWithFullSolve(engine, settings);
+    EXPECT_LT(e.rms, 0.005) << "max " << e.max << ", worst object " << e.worstObjectRms;
 }
 
 // The same in a furnished office, where judging every link at each edit's

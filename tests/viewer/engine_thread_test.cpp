@@ -166,7 +166,7 @@ TEST(EngineThread, UndoOfAnEditGivesEachPolygonItsMaterialBack) {
     const auto undone = waitFor(thread, [&](const ViewerSnapshot& s) {
         const FrameStats& f = s.frame;
         return *objectNamed(s, "block").materials == *materials &&
-               f.pending + f.stale + f.unsent + f.deferred + f.unmeshed == 0;
+               f.pending + f.stale + f.unsent + f.deferred + f.unmeshed + f.finer == 0;
     });
     EXPECT_EQ(*objectNamed(*undone, "block").materials, *materials);
     EXPECT_NEAR(meanColor(*undone->mesh) / before, 1.0, 0.001);

@@ -112,6 +112,9 @@ struct FrameStats {
     std::size_t pending = 0;           // links left coarser than the criterion asks (and polygons' light links)
     std::size_t stale = 0;             // links a budget left with the transfers of an earlier position
     std::size_t unsent = 0;            // elements whose change a deadline kept from bouncing
+    // Elements an edit left with links finer than its light now asks
+    // (a dimmed light's): idle time (refinePending) coarsens them.
+    std::size_t finer = 0;
     std::size_t unmeshed = 0;          // polygons whose meshing the deadline left for a later frame (drawn with their last light)
     std::size_t deferred = 0;          // objects whose move a deadline left for a later frame (links not yet updated)
     // A live estimate of how far the frame is from what an unlimited update
