@@ -180,7 +180,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             return true;
         });
         visited = pushPull(stats);
-        touched_.insert(touched_.end(), visited.begin(), visited.end());
+        touch(visited);
         // What was sent ahead is a sender until its radiosity has come to
         // what it sent (each bounce checks it against the threshold), even
         // where no push visits it again.
@@ -214,7 +214,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         if (e == h_.root() || h_[e].parent != kNone) refiner_.markDirty(e);
     }
     visited = pushPull(stats);
-    touched_.insert(touched_.end(), visited.begin(), visited.end());
+    touch(visited);
     const double took = secondsSince(began) + tail_.seconds(stats.changedLeaves - leavesBefore) - tail_.seconds(0);
     waitingPushSeconds_ = std::max(took / share, 0.75 * waitingPushSeconds_);
     // Idle time sends what that push changed too, down to the threshold:
@@ -331,19 +331,12 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     // touched, and a later frame or idle time steps them (on the building
     // floor, after a change that reached 60,000 elements, it took 8 ms).
     if (deadline_ && !idle_ &&
-        shareThatFits(stats.changedLeaves, followSecondsPerElement_ * double(touched_.size())) < 1.0) {
-        if (touched_.size() > h_.size()) {
-            std::sort(touched_.begin(), touched_.end());
-            touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
-        }
+        shareThatFits(stats.changedLeaves, followSecondsPerElement_ * double(touched_.size())) < 1.0)
         return;
-    }
     const auto began = std::chrono::steady_clock::now();
-    std::sort(touched_.begin(), touched_.end());
-    touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
     const std::size_t touched = touched_.size();
     const std::vector<ElementId> moved = stepOracles(h_, touched_, kOracleFloor * referenceRadiosity_, lightScale_);
-    touched_.clear();
+    clearTouched();
     // Idle time also coarsens what edits left finer than their light asks.
     std::vector<ElementId> coarser;
     if (idle_) {
@@ -388,7 +381,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     // The light that the new links carry, once around.
     std::vector<ElementId> visited = pushPull(stats);
     bounce(std::move(visited), settings, stats);
-    touched_.clear();  // what moved now is stepped at the next frame
+    clearTouched();  // what moved now is stepped at the next frame
 }
 
 }  // namespace rad

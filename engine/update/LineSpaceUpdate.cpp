@@ -81,7 +81,7 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const 
     t = std::chrono::steady_clock::now();
     std::vector<ElementId> visited = pushPull(stats, true);
     recordOverlay(visited, false);
-    touched_.insert(touched_.end(), visited.begin(), visited.end());  // with what a deadline left
+    touch(visited);  // with what a deadline left
     moving_ = true;
     const struct Reset {
         bool& flag;
@@ -410,7 +410,7 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     std::vector<ElementId> visited = pushPull(stats);
     // What catching up changed joins what the last move changed on show.
     recordOverlay(visited, true);
-    touched_.insert(touched_.end(), visited.begin(), visited.end());
+    touch(visited);
     bounce(std::move(visited), settings, stats);
     followTheLight(settings, stats, left());
     idle_ = false;
@@ -465,7 +465,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     }
     std::vector<ElementId> visited = pushPull(stats);
     recordOverlay(visited, false);
-    touched_.insert(touched_.end(), visited.begin(), visited.end());
+    touch(visited);
     // The senders of the bounces are those that sent a guess (what they
     // sent may not be what their radiosity came to) and those whose
     // radiosity moved as a bounce's receivers would have to be pushed: not
@@ -504,7 +504,18 @@ void LineSpaceUpdate::setLightScale(double scale) {
     // Every element's share of the light moved, reached by the edit's
     // bounces or not.
     for (ElementId e = 0; e < h_.size(); ++e)
-        if (e == h_.root() || h_[e].parent != kNone) touched_.push_back(e);
+        if (e == h_.root() || h_[e].parent != kNone) touch({&e, 1});
+}
+
+void LineSpaceUpdate::touch(std::span<const ElementId> elements) {
+    if (isTouched_.size() < h_.size()) isTouched_.resize(h_.size(), 0);
+    for (ElementId e : elements)
+        if (!std::exchange(isTouched_[e], 1)) touched_.push_back(e);
+}
+
+void LineSpaceUpdate::clearTouched() {
+    for (ElementId e : touched_) isTouched_[e] = 0;
+    touched_.clear();
 }
 
 // Links made during the frame (refinement) have ids past the stamps sized

@@ -235,7 +235,13 @@ private:
     // deadline may leave waiting (Solver::PushDeadline). Not an edit's first
     // push: refinement then judges by the edited light, which must be there.
     std::vector<ElementId> pushPull(FrameStats& stats, bool onTheClock = false);
-    std::vector<ElementId> touched_;  // elements the frame's push-pulls visited
+    // Elements the frame's push-pulls visited, each once (a frame's pushes
+    // and bounces visit `office`'s 24,000 elements up to six times: sorting
+    // them took 1.3 to 5.5 ms).
+    std::vector<ElementId> touched_;
+    std::vector<char> isTouched_;  // per element: in touched_
+    void touch(std::span<const ElementId> elements);
+    void clearTouched();
     // Per element: how much the bounces could have moved its radiosity since
     // its last push; negative when it waits for none.
     std::vector<double> waitingChange_;
