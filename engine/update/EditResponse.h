@@ -16,7 +16,8 @@
 // links of what their sources hold as gathered. What the guess misses
 // (links refined or reinstated since, a deadline that cut the last edit's
 // bounces short) is then B - gathered, and goes out in plain bounces: the
-// solution does not depend on the guess, only the time it takes.
+// solution depends on the guess only below the bounce threshold, where
+// what each element has yet to send waits either way.
 
 #include <array>
 #include <cmath>

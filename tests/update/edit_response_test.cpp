@@ -24,7 +24,7 @@ UpdateSettings bouncesOnly() {
 // step is the last one again, and sends its light at once. Both ways reach
 // the same solution (to the bounce threshold), that of a full solve.
 TEST(EditResponse, ALightDimmedInStepsSendsEachStepsLightAtOnce) {
-    const EngineSettings settings;
+    const EngineSettings settings = test::coarse();
     Engine scaled(test::roomWithBlock(), settings);
     Engine plain(test::roomWithBlock(), settings);
     ASSERT_TRUE(scaled.solve().converged);
@@ -47,7 +47,7 @@ TEST(EditResponse, ALightDimmedInStepsSendsEachStepsLightAtOnce) {
 // Each channel scales on its own: a light turned redder in steps (its red
 // falling, its green and blue kept) is the last step again.
 TEST(EditResponse, ALightRecolouredInStepsScalesChannelByChannel) {
-    const EngineSettings settings;
+    const EngineSettings settings = test::coarse();
     Engine scaled(test::roomWithBlock(), settings);
     Engine plain(test::roomWithBlock(), settings);
     ASSERT_TRUE(scaled.solve().converged);
@@ -67,7 +67,7 @@ TEST(EditResponse, ALightRecolouredInStepsScalesChannelByChannel) {
 // moved) drops the kept light: the next dimming bounces as the first did,
 // and both ways still agree.
 TEST(EditResponse, AChangeOfColourOrAMoveDropsTheKeptLight) {
-    const EngineSettings settings;
+    const EngineSettings settings = test::coarse();
     Engine scaled(test::roomWithBlock(), settings);
     Engine plain(test::roomWithBlock(), settings);
     ASSERT_TRUE(scaled.solve().converged);
