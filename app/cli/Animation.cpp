@@ -162,7 +162,7 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
             try {
                 addFrame(record.stats, engine.editMaterials(frameEdits, left));
             } catch (const std::invalid_argument& error) {
-                throw std::runtime_error(error.what());
+                throw std::runtime_error("frame " + std::to_string(f) + ": " + error.what());
             }
         }
         if (moves.empty()) record.stats.budget = update.budget.value_or(kUnlimited);

@@ -58,9 +58,8 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
     } timer{stats};
     // A move's frames send only the larger changes; what lies between the
     // two thresholds waits, unsent, for the next frame or idle time.
-    const double sendAll = settings.bounceThreshold * referenceRadiosity_;
-    const double threshold =
-        moving_ ? std::max(settings.moveBounceThreshold * referenceRadiosity_, sendAll) : sendAll;
+    const double sendAll = settings.bounceThreshold * reference();
+    const double threshold = moving_ ? std::max(settings.moveBounceThreshold * reference(), sendAll) : sendAll;
     std::vector<Transfer> transfers;
     // Each element waits unsent once, and the links leaving what waits are
     // counted as it joins.

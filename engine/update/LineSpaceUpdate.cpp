@@ -445,7 +445,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
         response_.begin(h_, *emission);
         if (c) {
             std::size_t links = 0;
-            response_.send(h_, *c, settings.bounceThreshold * referenceRadiosity_, [&](ElementId e) {
+            response_.send(h_, *c, settings.bounceThreshold * reference(), [&](ElementId e) {
                 guessed.push_back(e);
                 links += h_[e].outLinks.size();
             });
@@ -473,7 +473,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     // last sweep left in each (0.07% of `office`'s light, against 1.5e-6
     // for the bounces alone of an edit by a millionth).
     if (!guessed.empty()) {
-        const double threshold = settings.bounceThreshold * referenceRadiosity_;
+        const double threshold = settings.bounceThreshold * reference();
         std::erase_if(visited, [&](ElementId e) { return !response_.movedSinceBegin(h_, e, threshold); });
         visited.insert(visited.end(), guessed.begin(), guessed.end());
         std::sort(visited.begin(), visited.end());

@@ -308,7 +308,14 @@ private:
     LinkStore& links_;
     Refiner& refiner_;
     Solver& solver_;
-    double referenceRadiosity_;
+    double referenceRadiosity_;  // the solve's mean emitted radiosity
+    // The mean emitted radiosity now, which the bounces' thresholds are
+    // relative to: a light dimmed a hundredfold is bounced as finely as a
+    // scene solved at that light. (Relative to the solve's, the Cornell
+    // box's only light dimmed to 1% in one frame was 2.9% rms from a full
+    // solve, to 0.01% 83%: what each element had left to send, under the
+    // solve's threshold, outshone the light.)
+    double reference() const { return referenceRadiosity_ / lightScale_; }
 
     // Per frame.
     std::vector<ObjectMotion> motions_;

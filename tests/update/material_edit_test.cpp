@@ -124,6 +124,20 @@ TEST(MaterialEdit, ALightChangedAndTakenBackReturnsTheSolution) {
     }
 }
 
+// The bounces' thresholds follow the emitted power: the room's only light
+// dimmed a thousandfold at once is bounced as finely as a solve of the dim
+// room (relative to the solve's power, the Cornell box's light dimmed to 1%
+// came 2.9% from a full solve, to 0.01% 83%: what each element had left to
+// send outshone the light).
+TEST(MaterialEdit, ALightDimmedAThousandfoldAtOnceMatchesAFullSolve) {
+    const EngineSettings settings = test::coarse();
+    Engine engine(test::roomWithBlock(), settings);
+    ASSERT_TRUE(engine.solve().converged);
+    engine.editMaterial("light", V(0.01), std::nullopt);
+    const SolutionError e = test::compareWithFullSolve(engine, settings);
+    EXPECT_LT(e.rms, 0.005) << "max " << e.max << ", worst object " << e.worstObjectRms;
+}
+
 // An edit refines where its light grew at once, and leaves the p-links its
 // light no longer asks for to idle time: a light dimmed on a slider does not
 // pay on each frame for coarsening (and sending what each reinstated p-link
@@ -241,6 +255,10 @@ TEST(MaterialEdit, BadValuesAndObjectsAreRefusedByName) {
     EXPECT_NE(message("lamp-2", V(std::nan(""), 0.0, 0.0), std::nullopt).find("lamp-2"), std::string::npos);
     EXPECT_NE(message("wall-x0", std::nullopt, V(0.5, 1.2, 0.5)).find("reflectance"), std::string::npos);
     EXPECT_NE(message("no-such-thing", V(1.0), std::nullopt).find("no-such-thing"), std::string::npos);
+    // Both lamps dimmed below what the update's differences resolve at once.
+    EXPECT_EQ(message("lamp-2", V(0.0), std::nullopt), "no error");
+    EXPECT_NE(message("light", V(1e-30), std::nullopt).find("'light' would leave the scene"), std::string::npos);
+    EXPECT_EQ(message("lamp-2", V(6.0, 5.0, 4.0), std::nullopt), "no error");
     // Nothing was changed by the refused edits.
     const SolutionError e = test::compareWithFullSolve(engine, test::coarse());
     EXPECT_LT(e.rms, 0.01);
