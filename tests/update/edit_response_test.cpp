@@ -20,15 +20,23 @@ UpdateSettings bouncesOnly() {
     return s;
 }
 
+// The room solved twice: `scaled` scales the last edit's light, `plain` is
+// given bouncesOnly().
+class ScaledLastEdit : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        ASSERT_TRUE(scaled.solve().converged);
+        ASSERT_TRUE(plain.solve().converged);
+    }
+    const EngineSettings settings = test::coarse();
+    Engine scaled{test::roomWithBlock(), settings};
+    Engine plain{test::roomWithBlock(), settings};
+};
+
 // The room's light dimmed in equal steps: from the second step on, each
 // step is the last one again, and sends its light at once. Both ways reach
 // the same solution (to the bounce threshold), that of a full solve.
-TEST(EditResponse, ALightDimmedInStepsSendsEachStepsLightAtOnce) {
-    const EngineSettings settings = test::coarse();
-    Engine scaled(test::roomWithBlock(), settings);
-    Engine plain(test::roomWithBlock(), settings);
-    ASSERT_TRUE(scaled.solve().converged);
-    ASSERT_TRUE(plain.solve().converged);
+TEST_F(ScaledLastEdit, ALightDimmedInStepsSendsEachStepsLightAtOnce) {
     const V emission(10.0);
     for (int step = 1; step <= 4; ++step) {
         const V to = emission * (1.0 - 0.2 * step);
@@ -46,12 +54,7 @@ TEST(EditResponse, ALightDimmedInStepsSendsEachStepsLightAtOnce) {
 
 // Each channel scales on its own: a light turned redder in steps (its red
 // falling, its green and blue kept) is the last step again.
-TEST(EditResponse, ALightRecolouredInStepsScalesChannelByChannel) {
-    const EngineSettings settings = test::coarse();
-    Engine scaled(test::roomWithBlock(), settings);
-    Engine plain(test::roomWithBlock(), settings);
-    ASSERT_TRUE(scaled.solve().converged);
-    ASSERT_TRUE(plain.solve().converged);
+TEST_F(ScaledLastEdit, ALightRecolouredInStepsScalesChannelByChannel) {
     for (int step = 1; step <= 3; ++step) {
         const V to(10.0, 10.0 - 2.0 * step, 10.0 - 3.0 * step);
         const FrameStats a = scaled.editMaterial("light", to, std::nullopt);
@@ -66,12 +69,7 @@ TEST(EditResponse, ALightRecolouredInStepsScalesChannelByChannel) {
 // What changes the links or the transfer (a wall recoloured, an object
 // moved) drops the kept light: the next dimming bounces as the first did,
 // and both ways still agree.
-TEST(EditResponse, AChangeOfColourOrAMoveDropsTheKeptLight) {
-    const EngineSettings settings = test::coarse();
-    Engine scaled(test::roomWithBlock(), settings);
-    Engine plain(test::roomWithBlock(), settings);
-    ASSERT_TRUE(scaled.solve().converged);
-    ASSERT_TRUE(plain.solve().converged);
+TEST_F(ScaledLastEdit, AChangeOfColourOrAMoveDropsTheKeptLight) {
     const auto both = [&](const auto& edit) {
         const FrameStats a = edit(scaled, UpdateSettings{});
         const FrameStats b = edit(plain, bouncesOnly());
