@@ -73,7 +73,8 @@ double emittedPower(const Scene& scene) {
 // the rounding of one.
 double emittedPowerAfter(const Scene& scene, const std::vector<Engine::MaterialEdit>& edits) {
     std::vector<glm::dvec3> emission(scene.polygons.size());
-    for (std::size_t p = 0; p < scene.polygons.size(); ++p) emission[p] = scene.materials[scene.polygons[p].material].emission;
+    for (std::size_t p = 0; p < scene.polygons.size(); ++p)
+        emission[p] = scene.materials[scene.polygons[p].material].emission;
     std::vector<glm::dvec3> intensity(scene.lights.size());
     for (std::size_t l = 0; l < scene.lights.size(); ++l) intensity[l] = scene.lights[l].intensity;
     for (const Engine::MaterialEdit& e : edits) {
@@ -1070,8 +1071,7 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     // is exact.
     if (const double before = emittedPower(s.scene); before > 0.0) {
         const double after = emittedPowerAfter(s.scene, edits);
-        if (after > 0.0 && after < kLeastPowerRatio * before)
-        {
+        if (after > 0.0 && after < kLeastPowerRatio * before) {
             std::ostringstream m;
             m << "the edit of '" << edits.front().object << "' would leave the scene " << after / before
               << " of its emitted light at once; an edit can dim it at most " << 1.0 / kLeastPowerRatio
