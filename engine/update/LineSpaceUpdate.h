@@ -117,10 +117,11 @@ public:
     // the receivers waiting for one, are expected to cost before one was
     // measured: a sweep of the solve, `seconds` over `links` active links.
     // The same sweep over `elements` elements is the first guess of a push's
-    // cost per element.
+    // cost per element, and of what sending an edit's scaled light costs.
     void guessBounceSeconds(double seconds, std::size_t links, std::size_t elements) {
         if (bounceSecondsPerLink_ == 0.0) bounceSecondsPerLink_ = seconds / double(std::max<std::size_t>(1, links));
         if (waitingPushSeconds_ == 0.0) waitingPushSeconds_ = seconds;
+        if (guessSeconds_ == 0.0) guessSeconds_ = guessLeast_ = seconds;  // every link summed, everything pushed
         if (pushSecondsPerElement_ == 0.0) pushSecondsPerElement_ = seconds / double(std::max<std::size_t>(1, elements));
     }
 
@@ -227,6 +228,11 @@ private:
     // what each changed: 50 to 60 ms of a 90 ms frame.
     std::vector<ElementId> coarsenLater_;
     std::vector<char> coarsenQueued_;  // per element: in coarsenLater_
+    // Elements whose oracle stepped and whose links a deadline left to be
+    // judged at a later frame or in idle time, and what judging took per
+    // link (links and p-links leaving what stepped).
+    std::vector<ElementId> judgeLater_;
+    double judgeSecondsPerLink_ = 0.0;
     // The oracles' floor, as a fraction of the scene's mean emitted radiosity.
     static constexpr double kOracleFloor = 1e-3;
     // The partial push-pull of what is marked dirty (Fig. 7); counts the
@@ -303,6 +309,10 @@ private:
     // The last emission edit's light (propagate), while nothing but
     // emission changes: a move or a change of reflectance drops it.
     EditResponse response_;
+    // What sending the last guess took, its push included, and the fastest
+    // one sent (before one, a sweep of the solve: guessBounceSeconds).
+    double guessSeconds_ = 0.0, guessLeast_ = 0.0;
+    bool guessSent_ = false;
 
     Hierarchy& h_;
     LinkStore& links_;
@@ -360,8 +370,7 @@ private:
     // pushes of at least kPushSample elements.
     double pushSecondsPerElement_ = 0.0;
     static constexpr std::size_t kPushSample = 1000;
-    // What following the light took per element touched (stepping the
-    // oracles, judging the links of those that stepped), measured likewise.
+    // What stepping the oracles took per element touched, measured likewise.
     double followSecondsPerElement_ = 0.0;
     // An idle frame (refinePending) begins its first batch of refinement
     // and its first bounce whatever the clock says, so that idle time

@@ -93,5 +93,27 @@ TEST_F(ScaledLastEdit, AChangeOfColourOrAMoveDropsTheKeptLight) {
     EXPECT_LT(e.rms, 0.005) << "max " << e.max << ", worst object " << e.worstObjectRms;
 }
 
+// On a deadline the scaled light is sent only when it is expected to fit:
+// with no time left the frame is the one bounces alone give (what waits is
+// counted), and without a deadline the scaled light goes out.
+TEST_F(ScaledLastEdit, ADeadlineWithNoTimeLeftSendsNoScaledLight) {
+    scaled.editMaterial("light", V(8.0), std::nullopt);
+    plain.editMaterial("light", V(8.0), std::nullopt, bouncesOnly());
+    UpdateSettings past;
+    past.deadlineSeconds = 1e-9;
+    UpdateSettings pastPlain = bouncesOnly();
+    pastPlain.deadlineSeconds = 1e-9;
+    const FrameStats a = scaled.editMaterial("light", V(6.0), std::nullopt, past);
+    const FrameStats b = plain.editMaterial("light", V(6.0), std::nullopt, pastPlain);
+    EXPECT_GT(a.unsent, 0u);
+    EXPECT_EQ(a.unsent, b.unsent);
+    EXPECT_EQ(compareSamples(scaled.samples(), plain.samples()).rms, 0.0);
+    // Given time, the scaled light goes out and the two agree to the bounce threshold.
+    const FrameStats c = scaled.editMaterial("light", V(4.0), std::nullopt);
+    plain.editMaterial("light", V(4.0), std::nullopt, bouncesOnly());
+    EXPECT_EQ(c.unsent, 0u);
+    EXPECT_LT(compareSamples(scaled.samples(), plain.samples()).rms, 2e-3);
+}
+
 }  // namespace
 }  // namespace rad
