@@ -53,6 +53,8 @@ public:
     const Aabb& box(ElementId id) const { return bounds_[id].box; }
     std::size_t size() const { return elements_.size(); }
     std::size_t liveCount() const { return elements_.size() - free_.size(); }
+    // Not freed (every element but the root has a parent until release()).
+    bool isLive(ElementId id) const { return id == root_ || elements_[id].parent != kNone; }
     double minArea() const { return minArea_; }
 
     // The surface element of each input polygon (quadtree root).

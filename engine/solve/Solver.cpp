@@ -187,7 +187,7 @@ std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dir
     };
     for (ElementId e : dirty) markPath(e);
     for (ElementId e : waited)
-        if (e == h_.root() || h_[e].parent != kNone) {
+        if (h_.isLive(e)) {
             h_[e].dirty = true;
             markPath(e);
         }

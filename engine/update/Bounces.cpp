@@ -210,7 +210,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
     for (ElementId e : pushed) {
         waitingChange_[e] = -1.0;
         // Freed since it began waiting (a removed subdivision): nothing to push.
-        if (e == h_.root() || h_[e].parent != kNone) refiner_.markDirty(e);
+        if (h_.isLive(e)) refiner_.markDirty(e);
     }
     visited = pushPull(stats);
     touch(visited);
@@ -367,7 +367,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     const std::size_t spentBefore = stats.spent;
     RefineHeap heap;
     for (ElementId s : moved) {
-        if (s != h_.root() && h_[s].parent == kNone) continue;  // freed since it stepped
+        if (!h_.isLive(s)) continue;  // freed since it stepped
         for (LinkId id : h_[s].outLinks)
             if (refiner_.wouldRefine(links_[id])) heap.push({heapKey(links_[id]), id});
         // Back at the solve's level (an edit taken back), the solve's
@@ -385,7 +385,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     std::sort(coarser.begin(), coarser.end());
     coarser.erase(std::unique(coarser.begin(), coarser.end()), coarser.end());
     for (ElementId s : coarser) {
-        if (s != h_.root() && h_[s].parent == kNone) continue;
+        if (!h_.isLive(s)) continue;
         for (LinkId id : std::vector<LinkId>(h_[s].outPlinks)) {
             const Link& l = links_[id];
             if (l.live && l.passive && l.source == s && !refiner_.wouldRefine(l)) {

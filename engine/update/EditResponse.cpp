@@ -40,22 +40,20 @@ void EditResponse::begin(const Hierarchy& h, const EmissionChange& change) {
     startPowers_.clear();
     for (ElementId e = 0; e < h.size(); ++e) {
         startB_[e] = h[e].radiosity;
-        if (h[e].shape == kNone || (e != h.root() && h[e].parent == kNone)) continue;
+        if (h[e].shape == kNone || !h.isLive(e)) continue;
         startFacet_[e] = static_cast<std::uint32_t>(startPowers_.size());
         const std::vector<glm::dvec3>& power = h.shape(e).power;
         startPowers_.insert(startPowers_.end(), power.begin(), power.end());
     }
-    recording_ = true;
 }
 
 void EditResponse::keep(const Hierarchy& h) {
-    recording_ = false;
     change_ = std::move(recordingChange_);
     entries_.clear();
     facets_.clear();
     for (ElementId e = 0; e < std::min<std::size_t>(h.size(), startB_.size()); ++e) {
         const HElement& el = h[e];
-        if (el.outLinks.empty() || (e != h.root() && el.parent == kNone)) continue;
+        if (el.outLinks.empty() || !h.isLive(e)) continue;
         Entry entry;
         entry.id = e;
         entry.polygon = el.polygon;
@@ -84,7 +82,6 @@ void EditResponse::clear() {
     change_.clear();
     entries_.clear();
     facets_.clear();
-    recording_ = false;
 }
 
 bool EditResponse::movedSinceBegin(const Hierarchy& h, ElementId e, double threshold) const {
@@ -102,8 +99,8 @@ bool EditResponse::movedSinceBegin(const Hierarchy& h, ElementId e, double thres
 
 bool EditResponse::stillThere(const Hierarchy& h, const Entry& entry) {
     if (entry.id >= h.size()) return false;
+    if (!h.isLive(entry.id)) return false;
     const HElement& el = h[entry.id];
-    if (entry.id != h.root() && el.parent == kNone) return false;  // freed
     if (el.polygon != entry.polygon || el.depth != entry.depth || el.param != entry.param) return false;
     if (el.shape != entry.shape) return false;
     return entry.shape == kNone || h.shape(entry.id).facetCount() == entry.facetCount;

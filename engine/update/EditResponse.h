@@ -67,9 +67,6 @@ class EditResponse {
     // Nothing kept (a move or a change of reflectance: the links or the
     // operator changed).
     void clear();
-    bool recording() const { return recording_; }
-    // Elements the kept response has.
-    std::size_t size() const { return entries_.size(); }
 
     static constexpr double kProportional = 1e-3;
 
@@ -97,7 +94,6 @@ class EditResponse {
     std::vector<glm::dvec3> startB_;
     std::vector<std::uint32_t> startFacet_;
     std::vector<glm::dvec3> startPowers_;
-    bool recording_ = false;
 };
 
 template <class Sent>

@@ -469,7 +469,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
             // mark them took 24 ms of `office`'s 60.
             if (links > links_.liveCount() / 4) {
                 for (ElementId e = 0; e < h_.size(); ++e)
-                    if (e == h_.root() || h_[e].parent != kNone) refiner_.markStale(e);
+                    if (h_.isLive(e)) refiner_.markStale(e);
             } else {
                 for (ElementId e : guessed)
                     for (LinkId id : h_[e].outLinks) refiner_.markStale(links_[id].receiver);
@@ -498,7 +498,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
         visited.erase(std::unique(visited.begin(), visited.end()), visited.end());
     }
     bounce(std::move(visited), settings, stats);
-    if (response_.recording()) response_.keep(h_);
+    if (emission) response_.keep(h_);
     stats.pushPullSeconds = secondsSince(start);
     return stats;  // judgeAgain finishes the frame
 }
@@ -522,7 +522,7 @@ void LineSpaceUpdate::setLightScale(double scale) {
     // Every element's share of the light moved, reached by the edit's
     // bounces or not.
     for (ElementId e = 0; e < h_.size(); ++e)
-        if (e == h_.root() || h_[e].parent != kNone) touch({&e, 1});
+        if (h_.isLive(e)) touch({&e, 1});
 }
 
 void LineSpaceUpdate::touch(std::span<const ElementId> elements) {
