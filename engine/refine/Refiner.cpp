@@ -336,6 +336,9 @@ std::vector<ElementId> Refiner::takeDirty() {
     out.swap(dirty_);
     // Summed again rather than adjusted link by link: exact whatever changed
     // (a cluster source's direction moves with it), and no rounding drift.
+    // When many are (an edit's light scaled at once: every element), the
+    // surfaces' gathered states are read from one array.
+    const std::vector<glm::dvec3> surfaces = out.size() > h_.size() / 8 ? surfacesGathered(h_) : std::vector<glm::dvec3>{};
     tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
         HElement& e = h_[out[i]];
         if (!e.stale) return;
@@ -347,7 +350,7 @@ std::vector<ElementId> Refiner::takeDirty() {
         double sum = 0.0;
         for (LinkId id : e.links) {
             const Link& l = links_[id];
-            irradiance += double(l.gathered) * sentRadiosity(h_, l);
+            irradiance += double(l.gathered) * (surfaces.empty() ? sentRadiosity(h_, l) : sentRadiosity(h_, l, surfaces));
             sum += l.gathered;
         }
         e.irradiance = irradiance;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <tbb/parallel_for.h>
+
 #include "links/FormFactor.h"
 
 namespace rad {
@@ -19,6 +21,14 @@ glm::dvec3 sentRadiosity(const Hierarchy& h, const Link& link) {
     if (s.isSurface()) return s.gathered;
     const ClusterShape& shape = h.shape(link.source);
     return shape.radiosityToward(centreDirection(h, link.source, link.receiver), shape.gathered);
+}
+
+std::vector<glm::dvec3> surfacesGathered(const Hierarchy& h) {
+    std::vector<glm::dvec3> held(h.size());
+    tbb::parallel_for(ElementId(0), static_cast<ElementId>(h.size()), [&](ElementId e) {
+        held[e] = h[e].isSurface() ? h[e].gathered : glm::dvec3(NAN);
+    });
+    return held;
 }
 
 glm::dvec3 sentChange(const Hierarchy& h, const Link& link, const glm::dvec3& surfaceChange,

@@ -16,6 +16,7 @@
 //     its links times its facets, and each member one look-up.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
@@ -33,6 +34,17 @@ glm::dvec3 centreDirection(const Hierarchy& h, ElementId from, ElementId to);
 // The radiosity the link's source sends to its receiver, as the receivers
 // hold it (the source's gathered state).
 glm::dvec3 sentRadiosity(const Hierarchy& h, const Link& link);
+// Every surface's gathered state in one array, NaN for a cluster (it sends
+// by direction), for summing many receivers' links at once: read from the
+// elements, each link costs two cache misses (the source's kind and its
+// gathered radiosity), and summing every receiver of `office` took 11 ms
+// instead of 8.6.
+std::vector<glm::dvec3> surfacesGathered(const Hierarchy& h);
+// sentRadiosity, a surface source read from that array.
+inline glm::dvec3 sentRadiosity(const Hierarchy& h, const Link& link, std::span<const glm::dvec3> surfaces) {
+    const glm::dvec3& held = surfaces[link.source];
+    return std::isnan(held.x) ? sentRadiosity(h, link) : held;
+}
 // The same for a change of the source's state: a surface's change of B, or a
 // cluster's change of facet powers.
 glm::dvec3 sentChange(const Hierarchy& h, const Link& link, const glm::dvec3& surfaceChange,

@@ -16,6 +16,7 @@ void Solver::gatherAll() {
             h_.shape(id).ownValid = false;  // summed from the links when pushed
         }
     }
+    const std::vector<glm::dvec3> surfaces = surfacesGathered(h_);
     tbb::parallel_for(ElementId(0), static_cast<ElementId>(h_.size()), [&](ElementId id) {
         HElement& e = h_[id];
         glm::dvec3 irradiance(0.0);
@@ -24,7 +25,7 @@ void Solver::gatherAll() {
             Link& link = links_[l];
             link.gathered = link.formFactor();
             if (!e.isSurface()) continue;  // a cluster's arrivals are resolved when it is pushed
-            irradiance += double(link.gathered) * sentRadiosity(h_, link);
+            irradiance += double(link.gathered) * sentRadiosity(h_, link, surfaces);
             sum += link.gathered;
         }
         e.irradiance = irradiance;
