@@ -19,12 +19,26 @@ MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarch
 
 // Each polygon's part of the mesh as last built, with a signature of what it
 // was built from (its leaves, their corners and radiosity): a frame re-meshes
-// only the polygons whose signature changed. A moved chair or one lit
-// differently re-meshes; the rest of the room is copied.
+// only the polygons whose signature changed. A moved chair re-meshes; one
+// lit differently, its leaves and corners as they were, is only coloured
+// again; the rest of the room is copied.
 struct SnapshotCache {
     struct Part {
-        std::uint64_t signature = 0;
+        // What it was built from: its leaves, their corners, reflectance and
+        // normal (`shape`); and their radiosity (`light`).
+        std::uint64_t shape = 0, light = 0;
         bool valid = false;
+        // How its vertices' colours come from its leaves' radiosity, to
+        // colour it again in the same sums: per vertex, the leaves of its
+        // corners (indices into the leaves as collected) from
+        // firstCorner[v]; then the T-vertices, each set between two
+        // vertices of a coarser leaf's edge, in the order they were set.
+        std::vector<std::uint32_t> cornerLeaf, firstCorner;
+        struct Between {
+            std::uint32_t vertex, a, b;
+            double t;
+        };
+        std::vector<Between> between;
         MeshSnapshot mesh;            // positions, normals, colors; indices from 0
         std::vector<double> weights;  // per vertex: the leaf area around it
         // The vertices on the polygon's outline: only they can meet another
