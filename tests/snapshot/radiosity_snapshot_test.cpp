@@ -104,6 +104,16 @@ TEST(RadiositySnapshot, CachedPartsGiveTheMeshMadeFromScratch) {
     expectSame("a subdivision");
     light(h[wall].children[2]);
     expectSame("a leaf's radiosity changed");
+    // Leaves of two depths: T-vertices on the coarse leaves' edges, set
+    // again when only the light changes (the part is coloured again, not
+    // meshed again).
+    const ElementId quarter = h[wall].children[1];
+    h.subdivide(quarter);
+    for (ElementId c : h[quarter].children) light(c);
+    expectSame("a quarter subdivided");
+    for (ElementId c : h[wall].children) light(c == quarter ? h[quarter].children[3] : c);
+    expectSame("new light on leaves of two depths");
+    h.removeChildren(quarter);
     h.removeChildren(wall);
     expectSame("the children removed");
     const std::uint32_t moved = s.objects.back().firstPolygon;
