@@ -85,6 +85,14 @@ public:
     const Link& operator[](LinkId id) const { return (*chunks_[id >> kShift])[id & kMask]; }
     std::size_t slots() const { return size_; }
     std::size_t liveCount() const { return size_ - free_.size(); }
+    // Reading the links of a list in turn, asks for the one a few places
+    // ahead of `k`: a list's links are scattered in the store, and a sum
+    // over them otherwise waits on memory at each (summing every receiver
+    // of `office` again: 8.6 -> 7.1 ms; pushing its clusters: 6.7 -> 5.3).
+    void prefetchAhead(const std::vector<LinkId>& ids, std::size_t k) const {
+        constexpr std::size_t kAhead = 8;
+        if (k + kAhead < ids.size()) __builtin_prefetch(&(*this)[ids[k + kAhead]]);
+    }
     // Drops the growth slack of the free list (after a solve: links come and
     // go by a few percent per move from then on).
     void compact() { free_.shrink_to_fit(); }

@@ -348,8 +348,10 @@ std::vector<ElementId> Refiner::takeDirty() {
         }
         glm::dvec3 irradiance(0.0);
         double sum = 0.0;
-        for (LinkId id : e.links) {
-            const Link& l = links_[id];
+        const std::size_t n = e.links.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            links_.prefetchAhead(e.links, k);
+            const Link& l = links_[e.links[k]];
             irradiance += double(l.gathered) * (surfaces.empty() ? sentRadiosity(h_, l) : sentRadiosity(h_, l, surfaces));
             sum += l.gathered;
         }

@@ -112,8 +112,10 @@ double pointKernel(const SourcePoints& source, const glm::dvec3& x) {
 void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
                  FacetArrivals& arrivals) {
     const ClusterShape& shape = h.shape(cluster);
-    for (LinkId id : h[cluster].links) {
-        const Link& l = links[id];
+    const std::vector<LinkId>& own = h[cluster].links;
+    for (std::size_t k = 0; k < own.size(); ++k) {
+        links.prefetchAhead(own, k);
+        const Link& l = links[own[k]];
         if (l.gathered == 0.0) continue;
         const glm::dvec3 u = centreDirection(h, cluster, l.source);
         const glm::dvec3 sent = sentRadiosity(h, l);

@@ -21,8 +21,9 @@ void Solver::gatherAll() {
         HElement& e = h_[id];
         glm::dvec3 irradiance(0.0);
         double sum = 0.0;
-        for (LinkId l : e.links) {
-            Link& link = links_[l];
+        for (std::size_t k = 0; k < e.links.size(); ++k) {
+            links_.prefetchAhead(e.links, k);
+            Link& link = links_[e.links[k]];
             link.gathered = link.formFactor();
             if (!e.isSurface()) continue;  // a cluster's arrivals are resolved when it is pushed
             irradiance += double(link.gathered) * sentRadiosity(h_, link, surfaces);

@@ -312,6 +312,7 @@ bool LineSpaceUpdate::collectTransfers(const std::vector<ElementId>& visited, Th
             }
         }
         for (std::size_t j = 0; j < el.outLinks.size(); ++j) {
+            links_.prefetchAhead(el.outLinks, j);
             const Link& l = links_[el.outLinks[j]];
             transfers[first[k] + j] = Transfer{l.receiver, l.source, double(l.gathered) * sentChange(h_, l, delta, facetDelta)};
         }
@@ -368,8 +369,11 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     RefineHeap heap;
     for (ElementId s : moved) {
         if (!h_.isLive(s)) continue;  // freed since it stepped
-        for (LinkId id : h_[s].outLinks)
-            if (refiner_.wouldRefine(links_[id])) heap.push({heapKey(links_[id]), id});
+        const std::vector<LinkId>& out = h_[s].outLinks;
+        for (std::size_t k = 0; k < out.size(); ++k) {
+            links_.prefetchAhead(out, k);
+            if (refiner_.wouldRefine(links_[out[k]])) heap.push({heapKey(links_[out[k]]), out[k]});
+        }
         // Back at the solve's level (an edit taken back), the solve's
         // hierarchy returns at once.
         if (coarsen || h_[s].level == 0) {
