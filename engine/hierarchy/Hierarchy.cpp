@@ -322,8 +322,15 @@ double ownCoverage(const std::vector<HElement>& elements, const HElement& e) {
 }  // namespace
 
 void Hierarchy::refreshCoverage(ElementId id) {
-    for (ElementId e = id; e != kNone && elements_[e].isSurface(); e = elements_[e].depth == 0 ? kNone : elements_[e].parent)
-        elements_[e].coverage = ownCoverage(elements_, elements_[e]);
+    // Up the quadtree while it changes: an element whose coverage is what it
+    // was leaves its parent's as it was (when an edit's light is summed
+    // again at every receiver, no sum of form factors changes, and walking
+    // every element's path up took 1.0 to 1.5 ms of `office`'s frame).
+    for (ElementId e = id; e != kNone && elements_[e].isSurface(); e = elements_[e].depth == 0 ? kNone : elements_[e].parent) {
+        const double coverage = ownCoverage(elements_, elements_[e]);
+        if (coverage == elements_[e].coverage) return;
+        elements_[e].coverage = coverage;
+    }
 }
 
 void Hierarchy::refreshQuadtreeCoverage(ElementId id) {
