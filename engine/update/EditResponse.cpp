@@ -97,16 +97,6 @@ bool EditResponse::movedSinceBegin(const Hierarchy& h, ElementId e, double thres
     return false;
 }
 
-EditResponse::Reach EditResponse::reach(const Hierarchy& h, const glm::dvec3& c, double threshold) const {
-    Reach r;
-    for (const Entry& e : entries_)
-        if (stillThere(h, e) && above(h, e, c, threshold)) {
-            ++r.elements;
-            r.links += h[e.id].outLinks.size();
-        }
-    return r;
-}
-
 bool EditResponse::stillThere(const Hierarchy& h, const Entry& entry) {
     if (entry.id >= h.size()) return false;
     if (!h.isLive(entry.id)) return false;

@@ -58,11 +58,6 @@ class EditResponse {
     // the solution exactly.
     template <class Sent>
     void send(Hierarchy& h, const glm::dvec3& c, double threshold, const Sent& sent) const;
-    // The elements send() would hand to `sent`, and the links leaving them.
-    struct Reach {
-        std::size_t elements = 0, links = 0;
-    };
-    Reach reach(const Hierarchy& h, const glm::dvec3& c, double threshold) const;
     // Whether e's radiosity (a cluster's facet powers, by area) moved by more
     // than `threshold` since begin(): a sender for the bounces after a guess.
     bool movedSinceBegin(const Hierarchy& h, ElementId e, double threshold) const;
@@ -90,16 +85,6 @@ class EditResponse {
         glm::dvec3 change{0.0};  // of B (a surface)
     };
     static bool stillThere(const Hierarchy& h, const Entry& entry);
-    // Whether c times the entry's change is above the threshold (by facet,
-    // for a cluster), for an entry still there.
-    bool above(const Hierarchy& h, const Entry& e, const glm::dvec3& c, double threshold) const {
-        if (std::abs(luminance(c * e.change)) > threshold) return true;
-        if (e.shape == kNone) return false;
-        const ClusterShape& shape = h.shape(e.id);
-        for (int f = 0; f < e.facetCount; ++f)
-            if (std::abs(luminance(c * facets_[e.firstFacet + f])) > threshold * shape.facets[f].area) return true;
-        return false;
-    }
 
     EmissionChange change_, recordingChange_;
     std::vector<Entry> entries_;
@@ -114,7 +99,14 @@ class EditResponse {
 template <class Sent>
 void EditResponse::send(Hierarchy& h, const glm::dvec3& c, double threshold, const Sent& sent) const {
     for (const Entry& e : entries_) {
-        if (!stillThere(h, e) || !above(h, e, c, threshold)) continue;
+        if (!stillThere(h, e)) continue;
+        bool above = std::abs(luminance(c * e.change)) > threshold;
+        if (e.shape != kNone) {
+            const ClusterShape& shape = h.shape(e.id);
+            for (int f = 0; f < e.facetCount && !above; ++f)
+                above = std::abs(luminance(c * facets_[e.firstFacet + f])) > threshold * shape.facets[f].area;
+        }
+        if (!above) continue;
         h[e.id].gathered += c * e.change;
         if (e.shape != kNone) {
             ClusterShape& shape = h.shape(e.id);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <tuple>
 
 #include <tbb/blocked_range.h>
@@ -455,28 +456,26 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
         // tried, and one that never fitted is not tried again (at 60 fps,
         // falling further made every third frame 21 ms long).
         if (c && !fits) guessSeconds_ = std::max(0.75 * guessSeconds_, guessLeast_);
-        // Their receivers sum their irradiance again. When the guess leaves
-        // from much of the scene (a light reaches most of a room), every
-        // element is marked rather than each link's receiver found: reading
-        // 500,000 links scattered in memory to mark them took 24 ms of
-        // `office`'s 60.
-        const double threshold = settings.bounceThreshold * reference();
-        const EditResponse::Reach reach = c && fits ? response_.reach(h_, *c, threshold) : EditResponse::Reach{};
-        const bool everyElement = reach.links > links_.liveCount() / 4;
-        // And only when that is less work than the bounces alone were
-        // (editWork): as the last guess measured, or before one as counted
-        // from the elements and links it leaves from. On the building floor a
-        // room's light reaches the corridor and, faintly, most rooms; its
-        // receivers' pushes reached 1.1 million elements, and the frames
-        // took 370 to 470 ms against 330 ms by bounces alone.
-        const double links = double(everyElement ? links_.liveCount() : reach.links);
-        const double pushed = double(everyElement ? h_.liveCount() : reach.elements);
-        const double expected = guessWork_ >= 0.0 ? guessWork_ : kSummedPerTransfer * links + kPushedPerTransfer * pushed;
-        const bool cheaper = expected < bounceAloneWork_;
+        // And only while the last guess was less work than the bounces alone
+        // were, per unit of the power the edits changed (editWork). On the
+        // building floor a room's light reaches the corridor and, faintly,
+        // most rooms: a guess's receivers' pushes reached 1.1 million
+        // elements, and its frames took 370 to 470 ms against 330 ms by
+        // bounces alone.
+        const bool cheaper = guessWork_ < 0.0 || guessWork_ < bounceAloneWork_;
         if (c && fits && cheaper) {
             guessBegan = std::chrono::steady_clock::now();
-            response_.send(h_, *c, threshold, [&](ElementId e) { guessed.push_back(e); });
-            if (everyElement) {
+            std::size_t links = 0;
+            response_.send(h_, *c, settings.bounceThreshold * reference(), [&](ElementId e) {
+                guessed.push_back(e);
+                links += h_[e].outLinks.size();
+            });
+            // Their receivers sum their irradiance again. When the guess
+            // leaves from much of the scene (a light reaches most of a
+            // room), every element is marked rather than each link's
+            // receiver found: reading 500,000 links scattered in memory to
+            // mark them took 24 ms of `office`'s 60.
+            if (links > links_.liveCount() / 4) {
                 for (ElementId e = 0; e < h_.size(); ++e)
                     if (h_.isLive(e)) refiner_.markStale(e);
             } else {
@@ -508,9 +507,22 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     }
     bounce(std::move(visited), settings, stats);
     if (emission) response_.keep(h_);
-    if (emission) (guessBegan ? guessWork_ : bounceAloneWork_) = editWork(stats);
+    if (emission) (guessBegan ? guessWork_ : bounceAloneWork_) = editWork(stats) / changedPower(*emission);
     stats.pushPullSeconds = secondsSince(start);
     return stats;  // judgeAgain finishes the frame
+}
+
+double LineSpaceUpdate::changedPower(const EmissionChange& emission) const {
+    double power = 0.0;
+    for (const auto& [key, change] : emission) {
+        if (key < h_.polygonCount()) {
+            const ElementId e = h_.polygonElement(key);
+            if (e != kNone) power += std::abs(luminance(change)) * h_[e].area;
+        } else {
+            power += std::abs(luminance(change)) * 4.0 * std::numbers::pi;  // a punctual light's intensity
+        }
+    }
+    return std::max(power, 1e-300);
 }
 
 void LineSpaceUpdate::judgeAgain(const UpdateSettings& settings, FrameStats& stats) {

@@ -315,15 +315,17 @@ private:
     bool guessSent_ = false;
     // The work of an emission edit's frame, in bounce transfers: its
     // transfers, and the elements its pushes reached, each as five (pushed,
-    // then stepped and meshed again: `office`, 24,000 elements pushed in
-    // 5.3 ms, 1.7 million transfers in 130 ms); a link summed again counts
-    // as a tenth (0.9 million in 7 ms).
-    static constexpr double kSummedPerTransfer = 0.1, kPushedPerTransfer = 5.0;
+    // then stepped and meshed again: in `office` 24,000 elements pushed in
+    // 5.3 ms, 1.7 million transfers in 130 ms).
+    static constexpr double kPushedPerTransfer = 5.0;
     static double editWork(const FrameStats& stats) {
         return double(stats.transfers) + kPushedPerTransfer * double(stats.changedElements);
     }
-    // The last edit frame's work with a guess (negative: none yet) and
-    // without one.
+    // The power an edit changes: emission times area, a punctual light's
+    // intensity times 4 pi.
+    double changedPower(const EmissionChange& emission) const;
+    // The last edit frame's work per unit of the power it changed, with a
+    // guess (negative: none yet) and without one.
     double guessWork_ = -1.0, bounceAloneWork_ = 0.0;
 
     Hierarchy& h_;
