@@ -298,13 +298,13 @@ void recolour(const Hierarchy& h, const std::vector<ElementId>& leaves, Snapshot
     for (std::size_t v = 0; v < n; ++v) part.mesh.colors[v] = glm::vec3(values[v]);
 }
 
-// 64-bit hashes of what a polygon's mesh is made from: its leaves (which,
-// and how deep), their corners in space, their reflectance and the normal
-// (the shape); and their radiosity (the light). A change of the shape
-// re-meshes the polygon, of the light alone colours it again. Word by word,
-// with a multiply-xorshift mix: it runs over every leaf of the scene each
-// frame.
-std::pair<std::uint64_t, std::uint64_t> polygonSignature(const Hierarchy& h, ElementId top,
+// 64-bit hashes of what a polygon's mesh is made from: its material (an
+// emitter is drawn untextured), its leaves (which, and how deep), their
+// corners in space, their reflectance and the normal (the shape); and their
+// radiosity (the light). A change of the shape re-meshes the polygon, of the
+// light alone colours it again. Word by word, with a multiply-xorshift mix:
+// it runs over every leaf of the scene each frame.
+std::pair<std::uint64_t, std::uint64_t> polygonSignature(const Hierarchy& h, ElementId top, std::uint32_t material,
                                                          std::vector<ElementId>& leaves) {
     leaves.clear();
     collectLeaves(h, top, leaves);
@@ -316,6 +316,7 @@ std::pair<std::uint64_t, std::uint64_t> polygonSignature(const Hierarchy& h, Ele
     const auto addVector = [&](std::uint64_t& hash, const glm::dvec3& v) {
         for (int k = 0; k < 3; ++k) add(hash, std::bit_cast<std::uint64_t>(v[k]));
     };
+    add(shape, material);
     for (ElementId l : leaves) {
         const HElement& e = h[l];
         add(shape, std::uint64_t(l) << 8 | e.depth);
@@ -562,7 +563,8 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
             if (touched && part.valid && !(*touched)[p]) continue;
             const ElementId top = hierarchy.polygonElement(static_cast<std::uint32_t>(p));
             const auto [shape, light] =
-                top == kNone ? std::pair<std::uint64_t, std::uint64_t>{0, 0} : polygonSignature(hierarchy, top, scratch.leaves);
+                top == kNone ? std::pair<std::uint64_t, std::uint64_t>{0, 0}
+                             : polygonSignature(hierarchy, top, scene.polygons[p].material, scratch.leaves);
             if (part.valid && part.shape == shape && part.light == light) {
                 if (touched) (*touched)[p] = 0;
                 continue;

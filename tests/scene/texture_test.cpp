@@ -180,6 +180,29 @@ TEST(Texture, TheSolutionAndTheSnapshotFollowTheTexture) {
     EXPECT_GT(black, 4);
 }
 
+// The textured rectangle made to glow by an edit: an emitter is drawn
+// untextured, in the next frame's mesh too (its polygon is meshed again,
+// not only coloured again: its material is part of what its mesh is made
+// from).
+TEST(Texture, ARectangleMadeToGlowIsDrawnUntextured) {
+    test::TempDir dir;
+    Scene s = loadGltf(texturedRectangle().writeEmbedded(dir).string());
+    PunctualLight bulb;
+    bulb.name = "bulb";
+    bulb.position = glm::dvec3(1.0, 1.5, 2.0);
+    bulb.intensity = glm::dvec3(10.0);
+    s.lights.push_back(bulb);
+    Engine engine(s, EngineSettings{});
+    ASSERT_TRUE(engine.solve().converged);
+    const MeshSnapshot before = engine.snapshot();
+    ASSERT_FALSE(before.textureLayer.empty());
+    for (int layer : before.textureLayer) EXPECT_EQ(layer, 0);
+    engine.editMaterial("T", glm::dvec3(5.0), std::nullopt);
+    const MeshSnapshot after = engine.snapshot();
+    ASSERT_EQ(after.textureLayer.size(), after.positions.size());
+    for (int layer : after.textureLayer) EXPECT_EQ(layer, -1);
+}
+
 // Two tiles of one textured material meeting at x = 1, one on white texels,
 // one on mid-grey ones: the seam's vertices show the same light per unit of
 // reflectance on both sides (colour times texelScale), each its own colour.
