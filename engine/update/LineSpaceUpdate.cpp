@@ -499,11 +499,18 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     // last sweep left in each (0.07% of `office`'s light, against 1.5e-6
     // for the bounces alone of an edit by a millionth).
     if (!guessed.empty()) {
+        // In the order of their ids, each once: a flag per element, the
+        // push's elements judged on all cores (sorting the 43,000 ids of
+        // `office`'s push and guess took most of 1.5 ms).
         const double threshold = settings.bounceThreshold * reference();
-        std::erase_if(visited, [&](ElementId e) { return !response_.movedSinceBegin(h_, e, threshold); });
-        visited.insert(visited.end(), guessed.begin(), guessed.end());
-        std::sort(visited.begin(), visited.end());
-        visited.erase(std::unique(visited.begin(), visited.end()), visited.end());
+        std::vector<char> sends(h_.size(), 0);
+        tbb::parallel_for(std::size_t(0), visited.size(), [&](std::size_t i) {
+            if (response_.movedSinceBegin(h_, visited[i], threshold)) sends[visited[i]] = 1;  // each visited once
+        });
+        for (ElementId e : guessed) sends[e] = 1;
+        visited.clear();
+        for (ElementId e = 0; e < h_.size(); ++e)
+            if (sends[e]) visited.push_back(e);
     }
     bounce(std::move(visited), settings, stats);
     if (emission) response_.keep(h_);
