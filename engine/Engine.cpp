@@ -60,17 +60,10 @@ double totalArea(const Scene& scene) {
     return a;
 }
 
-double emittedPower(const Scene& scene) {
-    double power = 0.0;
-    for (const Polygon& p : scene.polygons) power += p.area() * luminance(scene.materials[p.material].emission);
-    for (const PunctualLight& l : scene.lights) power += l.power();
-    return power;
-}
-
-// The same once `edits` (checked) are made: each edited polygon's emission,
-// or material, and each edited light's intensity, replaced. Summed afresh,
-// not as a difference: a light dimmed to 1e-30 of itself would vanish in
-// the rounding of one.
+// The scene's emitted power once `edits` (checked) are made: each edited
+// polygon's emission, or material, and each edited light's intensity,
+// replaced. Summed afresh, not as a difference: a light dimmed to 1e-30 of
+// itself would vanish in the rounding of one.
 double emittedPowerAfter(const Scene& scene, const std::vector<Engine::MaterialEdit>& edits) {
     std::vector<glm::dvec3> emission(scene.polygons.size());
     for (std::size_t p = 0; p < scene.polygons.size(); ++p)
@@ -99,6 +92,8 @@ double emittedPowerAfter(const Scene& scene, const std::vector<Engine::MaterialE
     }
     return power;
 }
+
+double emittedPower(const Scene& scene) { return emittedPowerAfter(scene, {}); }
 
 // The share of the thresholds' references (emitted power, area) a point's
 // surroundings make up (refine/Surroundings.h), measured with the scene's

@@ -513,8 +513,10 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
             if (sends[e]) visited.push_back(e);
     }
     bounce(std::move(visited), settings, stats);
-    if (emission) response_.keep(h_);
-    if (emission) (guessBegan ? guessWork_ : bounceAloneWork_) = editWork(stats) / changedPower(*emission);
+    if (emission) {
+        response_.keep(h_);
+        (guessBegan ? guessWork_ : bounceAloneWork_) = editWork(stats) / changedPower(*emission);
+    }
     stats.pushPullSeconds = secondsSince(start);
     return stats;  // judgeAgain finishes the frame
 }
