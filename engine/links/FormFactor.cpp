@@ -104,24 +104,28 @@ double pointToPolygon(const glm::dvec3& x, const glm::dvec3& nx, const PatchGeom
 
     // One-sided emitter: x must be strictly in front of the polygon's plane. The tolerance is
     // relative to the polygon's size and distance so that it means the same at every scale.
-    double scale2 = 0.0;  // squared: no root needed for a tolerance
-    for (int i = 0; i < polygon.n; ++i) {
-        const glm::dvec3 d = polygon.v[i] - x;
-        scale2 = std::max(scale2, glm::dot(d, d));
-    }
     const double height = glm::dot(np, x - polygon.v[0]);
-    if (!(height > 0.0 && height * height > 1e-24 * scale2)) return 0.0;  // also rejects NaN input
+    if (!(height > 0.0)) return 0.0;  // behind, in the plane, or NaN input
+    std::array<glm::dvec3, 4> v;  // the vertices relative to x
+    std::array<double, 4> side;   // their heights over x's tangent plane
+    double scale2 = 0.0;          // squared: no root needed for a tolerance
+    for (int i = 0; i < polygon.n; ++i) {
+        v[i] = polygon.v[i] - x;
+        side[i] = glm::dot(nx, v[i]);
+        scale2 = std::max(scale2, glm::dot(v[i], v[i]));
+    }
+    if (!(height * height > 1e-24 * scale2)) return 0.0;
 
     // Sutherland-Hodgman clip to the half-space above x's tangent plane (nx . (p - x) >= 0):
     // the Lambert contour integral below assumes the whole polygon is visible from x's front.
     // A convex polygon of 4 vertices clipped by one plane has at most 5.
-    std::array<glm::dvec3, 8> r{};  // clipped vertices relative to x
+    std::array<glm::dvec3, 8> r;  // clipped vertices relative to x (uninitialised: set before read)
     int count = 0;
     for (int i = 0; i < polygon.n; ++i) {
-        const glm::dvec3 a = polygon.v[i] - x;
-        const glm::dvec3 b = polygon.v[(i + 1) % polygon.n] - x;
-        const double sa = glm::dot(nx, a);
-        const double sb = glm::dot(nx, b);
+        const int j = i + 1 == polygon.n ? 0 : i + 1;
+        const glm::dvec3& a = v[i];
+        const glm::dvec3& b = v[j];
+        const double sa = side[i], sb = side[j];
         if (sa >= 0.0) r[count++] = a;
         if ((sa > 0.0 && sb < 0.0) || (sa < 0.0 && sb > 0.0))
             r[count++] = a + (b - a) * (sa / (sa - sb));
@@ -134,7 +138,7 @@ double pointToPolygon(const glm::dvec3& x, const glm::dvec3& nx, const PatchGeom
     // (x, v_i, v_i+1). With counter-clockwise-front winding seen from x, gamma_i is taken as
     // unit(r_{i+1} x r_i). beta_i = atan2(|c|, r_i . r_{i+1}) (vectorAngle) stays accurate for tiny and
     // near-straight angles, unlike acos of a normalised dot product.
-    std::array<double, 8> length2{};
+    std::array<double, 8> length2;
     for (int i = 0; i < count; ++i) length2[i] = glm::dot(r[i], r[i]);
     double sum = 0.0;
     for (int i = 0; i < count; ++i) {
