@@ -159,6 +159,9 @@ struct RayCaster::Impl {
         std::vector<RayCasterPart> parts;  // static: one; dynamic: one per instance, by its geometry id
         double magnitude = 0.0;          // largest absolute vertex coordinate
         bool instanced = false;          // the dynamic layer: its parts are instances
+        // The committed scene's box in Embree's frame, grown by a little:
+        // a packet whose rays all pass outside it cannot be blocked.
+        glm::vec3 lower{0.0f}, upper{0.0f};
     };
 
     RTCDevice device = nullptr;
@@ -288,6 +291,31 @@ struct RayCaster::Impl {
         ray.flags[lane] = 0;
     }
 
+    // Whether the box of the packet's valid rays meets the layer's box. The
+    // dynamic layer (a chair in a room) misses most links' packets, and an
+    // instanced packet is traced incoherently.
+    static bool reaches(const LayerData& l, const RTCRay16& rays, const std::array<int, 16>& valid) {
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (unsigned i = 0; i < 16; ++i) {
+            if (valid[i] != -1) continue;
+            const glm::vec3 a(rays.org_x[i], rays.org_y[i], rays.org_z[i]);
+            const glm::vec3 b = a + rays.tfar[i] * glm::vec3(rays.dir_x[i], rays.dir_y[i], rays.dir_z[i]);
+            lo = glm::min(lo, glm::min(a, b));
+            hi = glm::max(hi, glm::max(a, b));
+        }
+        return glm::all(glm::lessThanEqual(lo, l.upper)) && glm::all(glm::lessThanEqual(l.lower, hi));
+    }
+
+    // Sets l's box from its committed scene.
+    static void setBounds(LayerData& l) {
+        RTCBounds b;
+        rtcGetSceneBounds(l.scene.get(), &b);
+        // Embree's frame is the scene at unit size: 1e-4 is far beyond a float's rounding there.
+        const float margin = 1e-4f;
+        l.lower = glm::vec3(b.lower_x, b.lower_y, b.lower_z) - margin;
+        l.upper = glm::vec3(b.upper_x, b.upper_y, b.upper_z) + margin;
+    }
+
     // The segments (at most 16) traced as one packet.
     std::uint16_t blockedMask(const LayerData& l, std::span<const Segment> in) const {
         std::array<PlacedSegment, kMaxSegments> segments;
@@ -301,6 +329,7 @@ struct RayCaster::Impl {
             any = true;
         }
         if (!any) return 0;
+        if (!reaches(l, rays, valid)) return 0;
         SegmentContext context;
         rtcInitIntersectContext(&context.base);
         // Coherent: the segments of a link run between two small patches, so
@@ -347,6 +376,7 @@ void RayCaster::setLayer(Layer layer, const Scene& scene, std::span<const std::u
         rtcCommitScene(built.get());
         throwOnError(impl_->device, "building the scene");
         fresh.scene = std::move(built);
+        Impl::setBounds(fresh);
         fresh.magnitude = fresh.parts[0].magnitude;
     }
     impl_->layer(layer) = std::move(fresh);
@@ -429,6 +459,7 @@ void RayCaster::commitInstances() {
     if (!l.scene) return;
     rtcCommitScene(l.scene.get());
     throwOnError(impl_->device, "building the dynamic layer");
+    Impl::setBounds(l);
 }
 
 std::uint16_t RayCaster::blocked(Layer layer, std::span<const Segment> segments) const {

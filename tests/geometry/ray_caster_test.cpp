@@ -266,6 +266,30 @@ TEST(RayCaster, InstancesMovedByTransformsBlockAsPolygonsBuiltWhereTheyAre) {
     EXPECT_THROW(rc.moveInstance(0, glm::dmat4(1.0)), std::out_of_range);
 }
 
+// A packet that misses the dynamic layer's box is not traced there: the box
+// must follow the instances as they move.
+TEST(RayCaster, AMovedInstanceBlocksWhereItWentNotWhereItWas) {
+    Scene scene;
+    scene.polygons.push_back(squareZ(0.0, 1.0, 0.0, 1.0, 0.0));
+    RayCaster rc;
+    rc.setFrame(Aabb{glm::dvec3(-1.0), glm::dvec3(7.0)});
+    const std::size_t i = rc.addInstance(scene, allIds(scene));
+    rc.commitInstances();
+    const auto across = [](double x) { return RayCaster::Segment{{x, 0.5, -1.0}, {x, 0.5, 1.0}}; };
+    EXPECT_TRUE(occluded(rc, Layer::Dynamic, {0.5, 0.5, -1.0}, {0.5, 0.5, 1.0}));
+    rc.moveInstance(i, glm::translate(glm::dmat4(1.0), glm::dvec3(5.0, 0.0, 0.0)));
+    rc.commitInstances();
+    EXPECT_FALSE(occluded(rc, Layer::Dynamic, {0.5, 0.5, -1.0}, {0.5, 0.5, 1.0}));
+    EXPECT_TRUE(occluded(rc, Layer::Dynamic, {5.5, 0.5, -1.0}, {5.5, 0.5, 1.0}));
+    // One packet: only the segment through the square's new place is blocked.
+    std::vector<RayCaster::Segment> packet;
+    for (int k = 0; k < 16; ++k) packet.push_back(across(k == 9 ? 5.5 : 0.05 * k));
+    EXPECT_EQ(rc.blocked(Layer::Dynamic, std::span(packet)), std::uint16_t(1u << 9));
+    // A packet whose own box spans the square but whose rays pass beside it.
+    const std::vector<RayCaster::Segment> beside{{{4.0, 0.5, 0.5}, {4.9, 0.5, 0.5}}, {{6.1, 0.5, -0.5}, {6.5, 0.5, -0.5}}};
+    EXPECT_EQ(rc.blocked(Layer::Dynamic, std::span(beside)), 0u);
+}
+
 TEST(RayCaster, IntersectReturnsTheNearestPolygonInEitherLayer) {
     Scene scene;
     scene.polygons = {squareZ(-1, 1, -1, 1, 1), squareZ(-1, 1, -1, 1, 2), squareZ(5, 6, 5, 6, 3)};
