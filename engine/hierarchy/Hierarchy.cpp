@@ -179,10 +179,12 @@ ElementId Hierarchy::add(HElement e, const ElementBounds& bounds) {
         free_.pop_back();
         elements_[id] = std::move(e);
         bounds_[id] = bounds;
+        quadrature_[id] = {};  // a surface's are made with its patch
         return id;
     }
     elements_.push_back(std::move(e));
     bounds_.push_back(bounds);
+    quadrature_.emplace_back();
     return static_cast<ElementId>(elements_.size() - 1);
 }
 
@@ -248,6 +250,7 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
     e.reflectance = surfaceReflectance(scene, polygon, e.corners());
     e.emission = m.emission;
     const ElementId id = add(std::move(e), bounds);
+    quadrature_[id] = quadraturePoints(elements_[id].patch);
     polygonElements_[polygon] = id;
     meshTouched_[polygon] = 1;
     return id;
@@ -505,6 +508,7 @@ void Hierarchy::updateGeometry(ElementId id) {
         box = Aabb{};
         for (int i = 0; i < e.patch.n; ++i) box.extend(e.patch.v[i]);
         e.center = patchCentroid(e.patch);
+        quadrature_[id] = quadraturePoints(e.patch);
         meshTouched_[e.polygon] = 1;  // the same polygon from one thread only: disjoint subtrees
     }
     // The subtrees are disjoint: a moved object's clusters, whose
@@ -563,6 +567,7 @@ void Hierarchy::compact(double slack) {
     const std::size_t spare = slack > 0.0 ? 4 : 0;
     shrink(elements_, 0);
     shrink(bounds_, 0);
+    shrink(quadrature_, 0);
     if (direct_.size() > elements_.size()) direct_.resize(elements_.size());
     shrink(direct_, 0);
     shrink(shapes_, 0);
@@ -577,6 +582,7 @@ void Hierarchy::compact(double slack) {
 
 std::size_t Hierarchy::memoryBytes() const {
     std::size_t bytes = elements_.capacity() * sizeof(HElement) + bounds_.capacity() * sizeof(ElementBounds) +
+                        quadrature_.capacity() * sizeof(QuadraturePoints) +
                         direct_.capacity() * sizeof(glm::dvec3) +
                         free_.capacity() * sizeof(ElementId) +
                         shapes_.capacity() * sizeof(ClusterShape) + freeShapes_.capacity() * sizeof(std::uint32_t);

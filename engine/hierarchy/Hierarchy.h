@@ -12,6 +12,7 @@
 
 #include "hierarchy/ClusterShape.h"
 #include "hierarchy/HElement.h"
+#include "links/FormFactor.h"
 #include "radiosity/Scene.h"
 
 namespace rad {
@@ -51,6 +52,8 @@ public:
     // An element's index range (sec. 3.2) and box, kept apart (ElementBounds).
     const IndexRange& range(ElementId id) const { return bounds_[id].range; }
     const Aabb& box(ElementId id) const { return bounds_[id].box; }
+    // A surface's quadraturePoints, made with its patch (none for a cluster).
+    const QuadraturePoints& quadrature(ElementId id) const { return quadrature_[id]; }
     std::size_t size() const { return elements_.size(); }
     std::size_t liveCount() const { return elements_.size() - free_.size(); }
     // Not freed (every element but the root has a parent until release()).
@@ -158,6 +161,7 @@ private:
     const Scene& scene_;  // outlives the hierarchy; polygons move with the dynamic object
     std::vector<HElement> elements_;
     std::vector<ElementBounds> bounds_;  // parallel to elements_
+    std::vector<QuadraturePoints> quadrature_;  // parallel to elements_
     std::vector<glm::dvec3> direct_;     // parallel to elements_ once a light link exists
     std::vector<ElementId> free_;
     std::vector<ClusterShape> shapes_;

@@ -215,20 +215,42 @@ SampleSet patchSamples(const PatchGeometry& patch, int order) {
     return samples;
 }
 
-FormFactorEstimate estimateFormFactor(const PatchGeometry& receiver, const PatchGeometry& source,
-                                      int order) {
+QuadraturePoints quadraturePoints(const PatchGeometry& patch) {
+    const SampleSet all = patchSamples(patch, 2);
+    QuadraturePoints q;
+    for (const SamplePoint& s : all) q.points[q.count++] = s;
+    return q;
+}
+
+namespace {
+
+// The mean, least and largest form factor from the receiver's points to the source.
+template <class Points>
+FormFactorEstimate estimateOver(const Points& points, const PatchGeometry& receiver, const PatchGeometry& source) {
     FormFactorEstimate e;
     const glm::dvec3 nr = polygonNormal(receiver);
     if (nr == glm::dvec3(0.0)) return e;
     e.min = INFINITY;
     const glm::dvec3 ns = emitterNormal(source);
-    for (const SamplePoint& s : patchSamples(receiver, order)) {
+    for (const SamplePoint& s : points) {
         const double f = pointToPolygon(s.p, nr, source, ns);
         e.mean += s.w * f;
         e.min = std::min(e.min, f);
         e.max = std::max(e.max, f);
     }
     return e;
+}
+
+}  // namespace
+
+FormFactorEstimate estimateFormFactor(const PatchGeometry& receiver, const PatchGeometry& source,
+                                      int order) {
+    return estimateOver(patchSamples(receiver, order), receiver, source);
+}
+
+FormFactorEstimate estimateFormFactor(const QuadraturePoints& receiverPoints, const PatchGeometry& receiver,
+                                      const PatchGeometry& source) {
+    return estimateOver(receiverPoints, receiver, source);
 }
 
 double polygonToPolygonFormFactor(const PatchGeometry& receiver, const PatchGeometry& source,

@@ -67,6 +67,22 @@ struct SampleSet {
 };
 SampleSet patchSamples(const PatchGeometry& patch, int order);
 
+// patchSamples(patch, 2): the points of the visibility rays and of a
+// cluster end's surface, made once per element (Hierarchy::quadrature)
+// rather than for every link.
+struct QuadraturePoints {
+    std::array<SamplePoint, 4> points;
+    std::size_t count = 0;
+    const SamplePoint* begin() const { return points.data(); }
+    const SamplePoint* end() const { return points.data() + count; }
+    std::size_t size() const { return count; }
+};
+QuadraturePoints quadraturePoints(const PatchGeometry& patch);
+
+// estimateFormFactor with the receiver's points given: its quadraturePoints.
+FormFactorEstimate estimateFormFactor(const QuadraturePoints& receiverPoints, const PatchGeometry& receiver,
+                                      const PatchGeometry& source);
+
 // Point approximation used for links with a cluster end (Sillion 1995): the form factor from a
 // receiver to a source seen as a small element of area aSource, with orientation factors:
 // F = aSource * gSource * gReceiver / (pi * d^2), where g is the cosine toward the other end

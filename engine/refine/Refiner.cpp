@@ -131,8 +131,13 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
         // Integrate over the smaller patch (the inner integral over the other
         // is exact) and use reciprocity, A_r F_rs = A_s F_sr: sampling the
         // larger patch would miss the peak of a small neighbour's kernel.
-        FormFactorEstimate e = estimateFormFactor(rcv.patch, src.patch, rcv.area > src.area ? 2 : order);
-        if (rcv.area > src.area) e.mean = src.area / rcv.area * estimateFormFactor(src.patch, rcv.patch, order).mean;
+        // Order 2 from the points each element keeps.
+        const auto estimate = [&](ElementId a, ElementId b, int n) {
+            return n == 2 ? estimateFormFactor(h_.quadrature(a), h_[a].patch, h_[b].patch)
+                          : estimateFormFactor(h_[a].patch, h_[b].patch, n);
+        };
+        FormFactorEstimate e = estimate(r, s, rcv.area > src.area ? 2 : order);
+        if (rcv.area > src.area) e.mean = src.area / rcv.area * estimate(s, r, order).mean;
         // A surface facing the receiver close in front of it (a door 2 mm
         // before a wall) may cover a strip along the receiver's edge that the
         // Gauss points miss: the variation is judged at the corners too.
@@ -156,7 +161,7 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
     }
     FormFactorEstimate e;
     e.min = INFINITY;
-    for (const SamplePoint& q : patchSamples(rcv.patch, 2)) {
+    for (const SamplePoint& q : h_.quadrature(r)) {
         const double f = pointToSource(source, q.p, rcv.normal);
         e.mean += q.w * f;
         e.min = std::min(e.min, f);

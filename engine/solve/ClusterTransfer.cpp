@@ -49,13 +49,19 @@ SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const Aabb& towa
     SourcePoints out;
     const HElement& s = h[source];
     if (s.isSurface()) {
-        for (const SamplePoint& q : patchSamples(s.patch, surfaceOrder)) {
-            if (out.n == SourcePoints::kMax) break;
-            out.p[out.n] = q.p;
-            out.normal[out.n] = s.normal;
-            out.polygon[out.n] = s.polygon;
-            out.area[out.n++] = q.w * s.area;
-        }
+        const auto take = [&](const auto& points) {
+            for (const SamplePoint& q : points) {
+                if (out.n == SourcePoints::kMax) break;
+                out.p[out.n] = q.p;
+                out.normal[out.n] = s.normal;
+                out.polygon[out.n] = s.polygon;
+                out.area[out.n++] = q.w * s.area;
+            }
+        };
+        if (surfaceOrder == 2)
+            take(h.quadrature(source));
+        else
+            take(patchSamples(s.patch, surfaceOrder));
         return out;
     }
     // The cluster's points on surfaces facing `toward`, evenly picked from
