@@ -97,6 +97,47 @@ void collectGroups(const Hierarchy& h, ElementId cluster,
 // divides the light a cluster link brings it alike. A diamond of tiles, as
 // wide along x as along z, split along the world's axes, was split along x
 // unturned and along z turned by 5 degrees.
+// Each surface keeps the 2 x 2 Gauss points of its patch (the visibility
+// rays' ends): made with the patch, at subdivision and after a move.
+TEST(Hierarchy, QuadraturePointsFollowThePatch) {
+    Scene scene = test::roomWithBlock();
+    Hierarchy h(scene, 1e-4);
+    std::uint32_t block = 0;
+    while (scene.objects[block].name != "block") ++block;
+    // Subdivide a wall and a face of the block, each two levels deep.
+    for (std::uint32_t p : {0u, scene.objects[block].firstPolygon}) {
+        const ElementId e = h.polygonElement(p);
+        h.subdivide(e);
+        h.subdivide(h[e].children[2]);
+    }
+    const auto checkAll = [&](const char* when) {
+        int surfaces = 0;
+        for (ElementId e = 0; e < h.size(); ++e) {
+            if (!h.isLive(e) || !h[e].isSurface()) continue;
+            ++surfaces;
+            const SampleSet fresh = patchSamples(h[e].patch, 2);
+            const QuadraturePoints& kept = h.quadrature(e);
+            ASSERT_EQ(kept.size(), fresh.size()) << when << ", element " << e;
+            for (std::size_t k = 0; k < fresh.size(); ++k) {
+                EXPECT_EQ(kept.points[k].p, fresh[k].p) << when << ", element " << e << ", point " << k;
+                EXPECT_EQ(kept.points[k].w, fresh[k].w) << when << ", element " << e << ", point " << k;
+            }
+        }
+        EXPECT_GT(surfaces, int(scene.polygons.size()) + 12) << when;
+    };
+    checkAll("subdivided");
+    // The block turns and moves: its elements' patches and points go with it.
+    const glm::dmat4 move = glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(0.4, 0.1, -0.3)), 0.6,
+                                        glm::dvec3(0.0, 1.0, 0.0));
+    const Object& o = scene.objects[block];
+    for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p)
+        for (glm::dvec3& v : scene.polygons[p].vertices) v = glm::dvec3(move * glm::dvec4(v, 1.0));
+    const glm::dvec3 before = h.quadrature(h.polygonElement(o.firstPolygon)).points[0].p;
+    h.updateGeometry(h.objectCluster(block));
+    EXPECT_NE(h.quadrature(h.polygonElement(o.firstPolygon)).points[0].p, before);
+    checkAll("moved");
+}
+
 TEST(Hierarchy, AnObjectsClustersDoNotChangeWhenItTurns) {
     const auto grouped = [](double degrees) {
         Scene s;
