@@ -57,9 +57,11 @@ glm::dvec3 sentChange(const Hierarchy& h, const Link& link, const glm::dvec3& su
 // link without rays), each with its normal and the area it stands for.
 struct SourcePoints {
     static constexpr int kMax = 4;
-    std::array<glm::dvec3, kMax> p{}, normal{};
-    std::array<double, kMax> area{};
-    std::array<std::uint32_t, kMax> polygon{};  // the input polygon each lies on
+    // The first n are set; the rest are left unset (zeroing them was a tenth
+    // of making the points, made twice for every link's rays).
+    std::array<glm::dvec3, kMax> p, normal;
+    std::array<double, kMax> area;
+    std::array<std::uint32_t, kMax> polygon;  // the input polygon each lies on
     int n = 0;
     double totalArea() const;
 };
