@@ -454,48 +454,6 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
                                     return std::size_t(local) + cache.vertexAt[p] == std::size_t(global);
                                 });
     }
-    // The keys the re-meshed parts' outline vertices had: their groups are
-    // summed again.
-    std::vector<Key> touched;
-    if (placesKept) {
-        tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
-            const std::size_t p = changed[c];
-            const SnapshotCache::Part& part = cache.parts[p];
-            const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
-            std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
-            copyTexturing(part.mesh, mesh, offset);
-        });
-        for (std::size_t p : changed)
-            for (std::uint32_t local : cache.parts[p].outline)
-                touched.push_back(vertexKey(mesh, static_cast<std::uint32_t>(cache.vertexAt[p] + local), cache.keyOrigin, cache.keyCell));
-    } else {
-        const auto mine = [&](std::uint32_t v) { return remeshed[cache.partOfVertex[v]] != 0; };
-        if (resized) {
-            for (const auto& entry : cache.keyed)
-                if (mine(entry.second)) touched.push_back(entry.first);
-            const auto began = std::chrono::steady_clock::now();
-            relayout(mesh, cache, remeshed);  // drops their keys and shifts the others
-            const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-            cache.relayoutSeconds = cache.relayoutSeconds > 0.0 ? 0.5 * (cache.relayoutSeconds + took) : took;
-        } else {
-            std::erase_if(cache.keyed, [&](const std::pair<Key, std::uint32_t>& entry) {
-                if (!mine(entry.second)) return false;
-                touched.push_back(entry.first);
-                return true;
-            });
-            tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
-                const std::size_t p = changed[c];
-                const SnapshotCache::Part& part = cache.parts[p];
-                const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
-                std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
-                std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
-                std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
-                copyTexturing(part.mesh, mesh, offset);
-                for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
-                    mesh.indices[cache.indexAt[p] + i] = part.mesh.indices[i] + offset;
-            });
-        }
-    }
     // The part a mesh vertex belongs to, and its own (unsmoothed) value and weight.
     const auto partOf = [&](std::uint32_t v) { return std::size_t(cache.partOfVertex[v]); };
     const auto own = [&](std::uint32_t v) {
@@ -506,20 +464,69 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
         const std::size_t p = partOf(v);
         return cache.parts[p].weights[v - cache.vertexAt[p]];
     };
-    // The re-meshed parts' outline vertices, under their new keys.
-    if (!placesKept) {
-        std::vector<std::pair<Key, std::uint32_t>> fresh;
+    if (placesKept) {
+        tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
+            const std::size_t p = changed[c];
+            const SnapshotCache::Part& part = cache.parts[p];
+            const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
+            std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
+            copyTexturing(part.mesh, mesh, offset);
+        });
+        // The keys stand: every group with a vertex of a re-meshed part is
+        // summed again, found in one walk along them (new light on every
+        // polygon, as an edit of a light makes, sorted them all each frame).
+        std::vector<std::uint8_t> mine(mesh.positions.size(), 0);
         for (std::size_t p : changed)
-            for (std::uint32_t local : cache.parts[p].outline) {
-                const auto v = static_cast<std::uint32_t>(cache.vertexAt[p] + local);
-                fresh.push_back({vertexKey(mesh, v, cache.keyOrigin, cache.keyCell), v});
-                touched.push_back(fresh.back().first);
-            }
-        std::sort(fresh.begin(), fresh.end());
-        const auto middle = static_cast<std::ptrdiff_t>(cache.keyed.size());
-        cache.keyed.insert(cache.keyed.end(), fresh.begin(), fresh.end());
-        std::inplace_merge(cache.keyed.begin(), cache.keyed.begin() + middle, cache.keyed.end());
+            for (std::uint32_t local : cache.parts[p].outline) mine[cache.vertexAt[p] + local] = 1;
+        const std::vector<std::pair<Key, std::uint32_t>>& keyed = cache.keyed;
+        for (std::size_t a = 0, b = 0; a < keyed.size(); a = b) {
+            bool any = false;
+            for (b = a; b < keyed.size() && keyed[b].first == keyed[a].first; ++b) any = any || mine[keyed[b].second];
+            if (any) smoothGroup(keyed, a, b, mesh, own, weight);
+        }
+        return;
     }
+    // The parts whose vertices moved: the keys their outline vertices had
+    // go, and the groups of those keys and of their new ones are summed again.
+    std::vector<Key> touched;
+    const auto mine = [&](std::uint32_t v) { return remeshed[cache.partOfVertex[v]] != 0; };
+    if (resized) {
+        for (const auto& entry : cache.keyed)
+            if (mine(entry.second)) touched.push_back(entry.first);
+        const auto began = std::chrono::steady_clock::now();
+        relayout(mesh, cache, remeshed);  // drops their keys and shifts the others
+        const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+        cache.relayoutSeconds = cache.relayoutSeconds > 0.0 ? 0.5 * (cache.relayoutSeconds + took) : took;
+    } else {
+        std::erase_if(cache.keyed, [&](const std::pair<Key, std::uint32_t>& entry) {
+            if (!mine(entry.second)) return false;
+            touched.push_back(entry.first);
+            return true;
+        });
+        tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
+            const std::size_t p = changed[c];
+            const SnapshotCache::Part& part = cache.parts[p];
+            const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
+            std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
+            std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
+            std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
+            copyTexturing(part.mesh, mesh, offset);
+            for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
+                mesh.indices[cache.indexAt[p] + i] = part.mesh.indices[i] + offset;
+        });
+    }
+    // The re-meshed parts' outline vertices, under their new keys.
+    std::vector<std::pair<Key, std::uint32_t>> fresh;
+    for (std::size_t p : changed)
+        for (std::uint32_t local : cache.parts[p].outline) {
+            const auto v = static_cast<std::uint32_t>(cache.vertexAt[p] + local);
+            fresh.push_back({vertexKey(mesh, v, cache.keyOrigin, cache.keyCell), v});
+            touched.push_back(fresh.back().first);
+        }
+    std::sort(fresh.begin(), fresh.end());
+    const auto middle = static_cast<std::ptrdiff_t>(cache.keyed.size());
+    cache.keyed.insert(cache.keyed.end(), fresh.begin(), fresh.end());
+    std::inplace_merge(cache.keyed.begin(), cache.keyed.begin() + middle, cache.keyed.end());
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     // One walk along both sorted lists, not a binary search per key: the
