@@ -124,7 +124,10 @@ void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
         const Link& l = links[own[k]];
         if (l.gathered == 0.0) continue;
         const glm::dvec3 u = centreDirection(h, cluster, l.source);
-        const glm::dvec3 sent = sentRadiosity(h, l);
+        // sentRadiosity, with a cluster source's direction toward the
+        // receiver taken as -u (the same numbers: it is u's negation, exactly).
+        const HElement& s = h[l.source];
+        const glm::dvec3 sent = s.isSurface() ? s.gathered : h.shape(l.source).radiosityToward(-u, h.shape(l.source).gathered);
         for (int k = 0; k < shape.facetCount(); ++k) {
             const double c = glm::dot(shape.facets[k].normal, u);
             if (c <= 0.0) continue;  // one-sided: facing away, it gets none
