@@ -2,8 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include <tbb/parallel_for.h>
 
 namespace rad {
+
+namespace {
+// Below this many, stepping on one core costs less than sharing it out.
+constexpr std::size_t kParallelElements = 4096;
+}  // namespace
 
 double oracleOf(const Hierarchy& h, ElementId e) {
     const HElement& el = h[e];
@@ -20,21 +28,31 @@ void anchorOracles(Hierarchy& h) {
 
 std::vector<ElementId> stepOracles(Hierarchy& h, std::span<const ElementId> elements,
                                    double floor, double scale) {
-    std::vector<ElementId> moved;
     const double logStep = std::log(OracleSteps::kStep);
-    for (ElementId e : elements) {
-        HElement& el = h[e];
-        const double b = scale * oracleOf(h, e);
-        if (!std::isfinite(b)) continue;
+    // Each element steps alone: on all cores when they are many (an edit of
+    // a light touches every element), the moved ones returned in the given
+    // order.
+    std::vector<std::uint8_t> stepped(elements.size(), 0);
+    const auto step = [&](std::size_t i) {
+        HElement& el = h[elements[i]];
+        const double b = scale * oracleOf(h, elements[i]);
+        if (!std::isfinite(b)) return;
         const double steps =
             std::log((std::max(b, 0.0) + floor) / (el.anchorLight + floor)) / logStep;
-        if (std::abs(steps - el.level) <= OracleSteps::kHysteresis) continue;
+        if (std::abs(steps - el.level) <= OracleSteps::kHysteresis) return;
         el.level = static_cast<std::int8_t>(std::clamp(std::lround(steps), -127L, 127L));
         el.oracle = el.level == 0
                         ? el.anchor
                         : (el.anchor + floor) * std::pow(OracleSteps::kStep, el.level) - floor;
-        moved.push_back(e);
-    }
+        stepped[i] = 1;
+    };
+    if (elements.size() >= kParallelElements)
+        tbb::parallel_for(std::size_t(0), elements.size(), step);
+    else
+        for (std::size_t i = 0; i < elements.size(); ++i) step(i);
+    std::vector<ElementId> moved;
+    for (std::size_t i = 0; i < elements.size(); ++i)
+        if (stepped[i]) moved.push_back(elements[i]);
     return moved;
 }
 

@@ -46,7 +46,8 @@ void anchorOracles(Hierarchy& hierarchy);
 // above. `scale`: the emitted power at the solve over the current one (an
 // edit of a light changes it), so that the level follows an element's share
 // of the light: dimming every light alike changes no level, as it changes no
-// refinement of a solve. Returns the elements whose oracle moved.
+// refinement of a solve. Returns the elements whose oracle moved, in the
+// given order. Each element at most once: they step on all cores.
 std::vector<ElementId> stepOracles(Hierarchy& hierarchy, std::span<const ElementId> elements,
                                    double floor, double scale);
 
