@@ -347,21 +347,30 @@ std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats, bool onTheCl
         pushSecondsPerElement_ = std::max(secondsSince(began) / double(visited.size()), 0.75 * pushSecondsPerElement_);
     stats.changedElements += visited.size();
     // The snapshot meshes again every polygon with a changed leaf, all of
-    // its leaves: that, counted once a frame, is what its time follows.
+    // its leaves: that, counted once a frame, is what its time follows. The
+    // leaves are counted on all cores (an edit of a light changes every
+    // polygon).
     if (polygonStamp_.size() < h_.polygonCount()) polygonStamp_.resize(h_.polygonCount(), 0);
+    std::vector<std::uint32_t> polygons;
     for (ElementId e : visited) {
         const HElement& el = h_[e];
         if (!el.isSurface() || !el.children.empty() || el.polygon == kNone) continue;
-        if (std::exchange(polygonStamp_[el.polygon], frame_) == frame_) continue;
-        std::size_t leaves = 0;
-        for (std::vector<ElementId> stack{h_.polygonElement(el.polygon)}; !stack.empty();) {
-            const HElement& q = h_[stack.back()];
-            stack.pop_back();
-            leaves += q.children.empty();
-            stack.insert(stack.end(), q.children.begin(), q.children.end());
-        }
-        stats.changedLeaves += leaves;
+        if (std::exchange(polygonStamp_[el.polygon], frame_) != frame_) polygons.push_back(el.polygon);
     }
+    stats.changedLeaves += tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, polygons.size()), std::size_t(0),
+        [&](const tbb::blocked_range<std::size_t>& r, std::size_t leaves) {
+            std::vector<ElementId> stack;
+            for (std::size_t i = r.begin(); i < r.end(); ++i)
+                for (stack.assign(1, h_.polygonElement(polygons[i])); !stack.empty();) {
+                    const HElement& q = h_[stack.back()];
+                    stack.pop_back();
+                    leaves += q.children.empty();
+                    stack.insert(stack.end(), q.children.begin(), q.children.end());
+                }
+            return leaves;
+        },
+        std::plus<>());
     return visited;
 }
 
