@@ -33,11 +33,11 @@ double ClusterShape::projectedArea(const glm::dvec3& dir) const {
     return a;
 }
 
-glm::dvec3 ClusterShape::radiosityToward(const glm::dvec3& dir,
-                                         std::span<const glm::dvec3> powers) const {
+glm::dvec3 ClusterShape::radiosityToward(std::span<const Facet> facets, const glm::dvec3& dir,
+                                         std::span<const glm::dvec3> powers) {
     glm::dvec3 sent(0.0);
     double area = 0.0;
-    for (int k = 0; k < facetCount(); ++k) {
+    for (std::size_t k = 0; k < facets.size(); ++k) {
         const double c = std::max(0.0, glm::dot(facets[k].normal, dir));
         if (c <= 0.0 || facets[k].area <= 0.0) continue;
         // A facet's B is its power over its area; weighted by its projected area A c.

@@ -105,7 +105,12 @@ struct ClusterShape {
     // The radiosity the cluster sends toward dir (unit): the facets' powers
     // weighted by their projected areas, over the projected area; zero when
     // no facet faces dir.
-    glm::dvec3 radiosityToward(const glm::dvec3& dir, std::span<const glm::dvec3> powers) const;
+    glm::dvec3 radiosityToward(const glm::dvec3& dir, std::span<const glm::dvec3> powers) const {
+        return radiosityToward(facets, dir, powers);
+    }
+    // The same from given facets (a copy kept apart: solve/ClusterTransfer.h).
+    static glm::dvec3 radiosityToward(std::span<const Facet> facets, const glm::dvec3& dir,
+                                      std::span<const glm::dvec3> powers);
     // The largest radiosity luminance of a facet (a bound on what it sends).
     double peakLuminance(std::span<const glm::dvec3> powers) const;
     // Keeps `own` as what its own links bring (and sets ownValid).

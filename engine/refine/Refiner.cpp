@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <span>
 #include <stdexcept>
 
@@ -347,8 +348,9 @@ std::vector<ElementId> Refiner::takeDirty() {
     // Summed again rather than adjusted link by link: exact whatever changed
     // (a cluster source's direction moves with it), and no rounding drift.
     // When many are (an edit's light scaled at once: every element), the
-    // surfaces' gathered states are read from one array.
-    const std::vector<glm::dvec3> surfaces = out.size() > h_.size() / 8 ? surfacesGathered(h_) : std::vector<glm::dvec3>{};
+    // sources' states are read from flat arrays (SourceStates).
+    const std::optional<SourceStates> states =
+        out.size() > h_.size() / 8 ? std::optional<SourceStates>(std::in_place, h_) : std::nullopt;
     tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
         HElement& e = h_[out[i]];
         if (!e.stale) return;
@@ -362,7 +364,7 @@ std::vector<ElementId> Refiner::takeDirty() {
         for (std::size_t k = 0; k < n; ++k) {
             links_.prefetchAhead(e.links, k);
             const Link& l = links_[e.links[k]];
-            irradiance += double(l.gathered) * (surfaces.empty() ? sentRadiosity(h_, l) : sentRadiosity(h_, l, surfaces));
+            irradiance += double(l.gathered) * (states ? states->sent(l, e.center) : sentRadiosity(h_, l));
             sum += l.gathered;
         }
         e.irradiance = irradiance;

@@ -10,10 +10,19 @@
 
 namespace rad {
 
-glm::dvec3 centreDirection(const Hierarchy& h, ElementId from, ElementId to) {
-    const glm::dvec3 d = h[to].center - h[from].center;
+namespace {
+
+// The unit vector from a toward b (zero when they coincide).
+glm::dvec3 unitToward(const glm::dvec3& a, const glm::dvec3& b) {
+    const glm::dvec3 d = b - a;
     const double len = glm::length(d);
     return len > 0.0 ? d / len : glm::dvec3(0.0);
+}
+
+}  // namespace
+
+glm::dvec3 centreDirection(const Hierarchy& h, ElementId from, ElementId to) {
+    return unitToward(h[from].center, h[to].center);
 }
 
 glm::dvec3 sentRadiosity(const Hierarchy& h, const Link& link) {
@@ -23,12 +32,42 @@ glm::dvec3 sentRadiosity(const Hierarchy& h, const Link& link) {
     return shape.radiosityToward(centreDirection(h, link.source, link.receiver), shape.gathered);
 }
 
-std::vector<glm::dvec3> surfacesGathered(const Hierarchy& h) {
-    std::vector<glm::dvec3> held(h.size());
+SourceStates::SourceStates(const Hierarchy& h) : sources_(h.size()) {
+    // Each element's state, then the clusters' facets placed one after
+    // another and copied, on all cores.
     tbb::parallel_for(ElementId(0), static_cast<ElementId>(h.size()), [&](ElementId e) {
-        held[e] = h[e].isSurface() ? h[e].gathered : glm::dvec3(NAN);
+        const HElement& el = h[e];
+        if (el.isSurface()) {
+            sources_[e].value = el.gathered;
+        } else if (el.shape != kNone) {  // a cluster (a freed element has no shape)
+            sources_[e].value = el.center;
+            sources_[e].first = 0;  // placed below
+            sources_[e].count = static_cast<std::uint32_t>(h.shape(e).facetCount());
+        }
     });
-    return held;
+    std::uint32_t next = 0;
+    for (Source& s : sources_)
+        if (s.first != kSurface) {
+            s.first = next;
+            next += s.count;
+        }
+    facets_.resize(next);
+    powers_.resize(next);
+    tbb::parallel_for(ElementId(0), static_cast<ElementId>(h.size()), [&](ElementId e) {
+        const Source& s = sources_[e];
+        if (s.count == 0) return;
+        const ClusterShape& shape = h.shape(e);
+        std::copy_n(shape.facets.begin(), s.count, facets_.begin() + s.first);
+        std::copy_n(shape.gathered.begin(), s.count, powers_.begin() + s.first);
+    });
+}
+
+glm::dvec3 SourceStates::sent(const Link& link, const glm::dvec3& receiverCentre) const {
+    const Source& s = sources_[link.source];
+    if (s.first == kSurface) return s.value;
+    // centreDirection(h, link.source, link.receiver), from the copied centre.
+    return ClusterShape::radiosityToward(std::span(facets_.data() + s.first, s.count), unitToward(s.value, receiverCentre),
+                                         std::span(powers_.data() + s.first, s.count));
 }
 
 glm::dvec3 sentChange(const Hierarchy& h, const Link& link, const glm::dvec3& surfaceChange,

@@ -16,7 +16,7 @@ void Solver::gatherAll() {
             h_.shape(id).ownValid = false;  // summed from the links when pushed
         }
     }
-    const std::vector<glm::dvec3> surfaces = surfacesGathered(h_);
+    const SourceStates states(h_);
     tbb::parallel_for(ElementId(0), static_cast<ElementId>(h_.size()), [&](ElementId id) {
         HElement& e = h_[id];
         glm::dvec3 irradiance(0.0);
@@ -26,7 +26,7 @@ void Solver::gatherAll() {
             Link& link = links_[e.links[k]];
             link.gathered = link.formFactor();
             if (!e.isSurface()) continue;  // a cluster's arrivals are resolved when it is pushed
-            irradiance += double(link.gathered) * sentRadiosity(h_, link, surfaces);
+            irradiance += double(link.gathered) * states.sent(link, e.center);
             sum += link.gathered;
         }
         e.irradiance = irradiance;
