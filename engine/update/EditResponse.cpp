@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include <tbb/parallel_for.h>
 
 namespace rad {
 
@@ -49,33 +52,53 @@ void EditResponse::begin(const Hierarchy& h, const EmissionChange& change) {
 
 void EditResponse::keep(const Hierarchy& h) {
     change_ = std::move(recordingChange_);
-    entries_.clear();
-    facets_.clear();
-    for (ElementId e = 0; e < std::min<std::size_t>(h.size(), startB_.size()); ++e) {
+    const std::size_t n = std::min<std::size_t>(h.size(), startB_.size());
+    // On all cores: which elements are kept and how many facet changes each
+    // brings (an edit of a light changes them all); then their places, in
+    // the order of their ids; then the entries written.
+    std::vector<std::uint32_t> facetsOf(n, kNone);  // kNone: not kept
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t e) {
         const HElement& el = h[e];
-        if (el.outLinks.empty() || !h.isLive(e)) continue;
-        Entry entry;
-        entry.id = e;
+        if (el.outLinks.empty() || !h.isLive(static_cast<ElementId>(e))) return;
+        bool changed = el.radiosity - startB_[e] != glm::dvec3(0.0);
+        std::uint32_t facets = 0;
+        if (el.shape != kNone) {
+            const std::vector<glm::dvec3>& power = h.shape(static_cast<ElementId>(e)).power;
+            // Its facets were made again (a member moved): not the same shape.
+            if (startFacet_[e] == kNone || startFacet_[e] + power.size() > startPowers_.size()) return;
+            for (std::size_t f = 0; f < power.size(); ++f)
+                changed = changed || power[f] - startPowers_[startFacet_[e] + f] != glm::dvec3(0.0);
+            facets = static_cast<std::uint32_t>(power.size());
+        }
+        if (changed) facetsOf[e] = facets;
+    });
+    std::vector<std::uint32_t> entryAt(n, kNone), facetAt(n, 0);
+    std::uint32_t entries = 0, facets = 0;
+    for (std::size_t e = 0; e < n; ++e)
+        if (facetsOf[e] != kNone) {
+            entryAt[e] = entries++;
+            facetAt[e] = facets;
+            facets += facetsOf[e];
+        }
+    entries_.assign(entries, Entry{});
+    facets_.assign(facets, glm::dvec3(0.0));
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t e) {
+        if (entryAt[e] == kNone) return;
+        const HElement& el = h[e];
+        Entry& entry = entries_[entryAt[e]];
+        entry.id = static_cast<ElementId>(e);
         entry.polygon = el.polygon;
         entry.depth = el.depth;
         entry.param = el.param;
         entry.change = el.radiosity - startB_[e];
-        bool changed = entry.change != glm::dvec3(0.0);
-        if (el.shape != kNone) {
-            const std::vector<glm::dvec3>& power = h.shape(e).power;
-            // Its facets were made again (a member moved): not the same shape.
-            if (startFacet_[e] == kNone || startFacet_[e] + power.size() > startPowers_.size()) continue;
-            entry.shape = el.shape;
-            entry.facetCount = static_cast<std::uint8_t>(power.size());
-            entry.firstFacet = static_cast<std::uint32_t>(facets_.size());
-            for (std::size_t f = 0; f < power.size(); ++f) {
-                facets_.push_back(power[f] - startPowers_[startFacet_[e] + f]);
-                changed = changed || facets_.back() != glm::dvec3(0.0);
-            }
-            if (!changed) facets_.resize(entry.firstFacet);
-        }
-        if (changed) entries_.push_back(entry);
-    }
+        if (el.shape == kNone) return;
+        const std::vector<glm::dvec3>& power = h.shape(static_cast<ElementId>(e)).power;
+        entry.shape = el.shape;
+        entry.facetCount = static_cast<std::uint8_t>(power.size());
+        entry.firstFacet = facetAt[e];
+        for (std::size_t f = 0; f < power.size(); ++f)
+            facets_[facetAt[e] + f] = power[f] - startPowers_[startFacet_[e] + f];
+    });
 }
 
 void EditResponse::clear() {

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <tbb/parallel_for.h>
 
 #include "hierarchy/Hierarchy.h"
 #include "radiosity/Scene.h"
@@ -98,22 +99,27 @@ class EditResponse {
 
 template <class Sent>
 void EditResponse::send(Hierarchy& h, const glm::dvec3& c, double threshold, const Sent& sent) const {
-    for (const Entry& e : entries_) {
-        if (!stillThere(h, e)) continue;
+    // Each entry is its own element: sent on all cores, handed on in order.
+    std::vector<std::uint8_t> sends(entries_.size(), 0);
+    tbb::parallel_for(std::size_t(0), entries_.size(), [&](std::size_t i) {
+        const Entry& e = entries_[i];
+        if (!stillThere(h, e)) return;
         bool above = std::abs(luminance(c * e.change)) > threshold;
         if (e.shape != kNone) {
             const ClusterShape& shape = h.shape(e.id);
             for (int f = 0; f < e.facetCount && !above; ++f)
                 above = std::abs(luminance(c * facets_[e.firstFacet + f])) > threshold * shape.facets[f].area;
         }
-        if (!above) continue;
+        if (!above) return;
         h[e.id].gathered += c * e.change;
         if (e.shape != kNone) {
             ClusterShape& shape = h.shape(e.id);
             for (int f = 0; f < e.facetCount; ++f) shape.gathered[f] += c * facets_[e.firstFacet + f];
         }
-        sent(e.id);
-    }
+        sends[i] = 1;
+    });
+    for (std::size_t i = 0; i < entries_.size(); ++i)
+        if (sends[i]) sent(entries_[i].id);
 }
 
 }  // namespace rad
