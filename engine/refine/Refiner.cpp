@@ -261,22 +261,20 @@ void Refiner::castPendingRays(const std::vector<LinkId>& ids) {
 
 LinkId Refiner::attach(const Link& link) {
     const LinkId id = links_.add(link);
-    Link& l = links_[id];
-    l.passive = false;
-    append(h_[link.receiver].links, link.receiver, id);
-    h_[link.source].outLinks.push_back(id);
-    if (l.visStale) refreshVisibility(l);
-    l.gathered = l.formFactor();
-    markStale(l.receiver);  // eq. 1
+    enlist(id);
     return id;
 }
 
 void Refiner::activate(LinkId id) {
-    Link& l = links_[id];
-    HElement& r = h_[l.receiver];
-    orderedErase(r.plinks, id);
-    append(r.links, l.receiver, id);
+    const Link& l = links_[id];
+    orderedErase(h_[l.receiver].plinks, id);
     unorderedErase(h_[l.source].outPlinks, id);
+    enlist(id);
+}
+
+void Refiner::enlist(LinkId id) {
+    Link& l = links_[id];
+    append(h_[l.receiver].links, l.receiver, id);
     h_[l.source].outLinks.push_back(id);
     l.passive = false;
     if (l.visStale) refreshVisibility(l);

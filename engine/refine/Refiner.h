@@ -161,6 +161,9 @@ private:
     std::vector<std::pair<ElementId, ElementId>> childPairs(const Link& link);
     // Appends to a receiver's list, which is then out of source order.
     void append(std::vector<LinkId>& list, ElementId receiver, LinkId id);
+    // Puts a link in its receiver's and its source's active lists, its rays
+    // cast if they wait, and its transfer gathered (attach, activate).
+    void enlist(LinkId id);
 
     Hierarchy& h_;
     LinkStore& links_;
