@@ -159,8 +159,8 @@ struct RayCaster::Impl {
         std::vector<RayCasterPart> parts;  // static: one; dynamic: one per instance, by its geometry id
         double magnitude = 0.0;          // largest absolute vertex coordinate
         bool instanced = false;          // the dynamic layer: its parts are instances
-        // The committed scene's box in Embree's frame, grown by a little:
-        // a packet whose rays all pass outside it cannot be blocked.
+        // The dynamic layer's committed box in Embree's frame, grown by a
+        // little: a packet whose rays all pass outside it cannot be blocked.
         glm::vec3 lower{0.0f}, upper{0.0f};
     };
 
@@ -291,9 +291,10 @@ struct RayCaster::Impl {
         ray.flags[lane] = 0;
     }
 
-    // Whether the box of the packet's valid rays meets the layer's box. The
+    // Whether the box of the packet's valid rays meets the layer's box: the
     // dynamic layer (a chair in a room) misses most links' packets, and an
-    // instanced packet is traced incoherently.
+    // instanced packet is traced incoherently. (The static layer is the
+    // scene: every packet meets its box.)
     static bool reaches(const LayerData& l, const RTCRay16& rays, const std::array<int, 16>& valid) {
         glm::vec3 lo(INFINITY), hi(-INFINITY);
         for (unsigned i = 0; i < 16; ++i) {
@@ -329,7 +330,7 @@ struct RayCaster::Impl {
             any = true;
         }
         if (!any) return 0;
-        if (!reaches(l, rays, valid)) return 0;
+        if (l.instanced && !reaches(l, rays, valid)) return 0;
         SegmentContext context;
         rtcInitIntersectContext(&context.base);
         // Coherent: the segments of a link run between two small patches, so
@@ -376,7 +377,6 @@ void RayCaster::setLayer(Layer layer, const Scene& scene, std::span<const std::u
         rtcCommitScene(built.get());
         throwOnError(impl_->device, "building the scene");
         fresh.scene = std::move(built);
-        Impl::setBounds(fresh);
         fresh.magnitude = fresh.parts[0].magnitude;
     }
     impl_->layer(layer) = std::move(fresh);
