@@ -560,7 +560,7 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     cache.parts.resize(polygons);
     std::vector<std::uint8_t> remeshed(polygons, 0);
     std::atomic<std::size_t> meshed{0}, left{0};
-    std::atomic<bool> resizesWait{false};
+    std::atomic<bool> resizesWait{false}, reshaped{false};
     const bool mayDelayResizes = stop && !cache.resizesWaited;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polygons, 16), [&](const tbb::blocked_range<std::size_t>& r) {
         Scratch scratch;
@@ -603,6 +603,7 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
                 part.light = light;
                 continue;
             }
+            reshaped.store(true, std::memory_order_relaxed);
             for (std::vector<glm::vec3>* v : {&part.mesh.positions, &part.mesh.normals, &part.mesh.colors, &part.mesh.texelScale})
                 v->clear();
             part.mesh.uvs.clear();
@@ -627,8 +628,11 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
                       cache.vertexAt.size() == polygons + 1 && box.lo == cache.keyOrigin &&
                       keyCellOf(box) == cache.keyCell;
     cache.resizesWaited = resizesWait.load();
-    const bool cheaperWhole =
-        cache.assembleSeconds > 0.0 && double(meshed.load()) * cache.patchSecondsPerPart > cache.assembleSeconds;
+    // Parts only coloured again keep their places and the sorted keys: the
+    // patch then walks the keys once, and costs less than joining the parts
+    // anew (which keys and sorts them all), however many there are.
+    const bool cheaperWhole = reshaped.load() && cache.assembleSeconds > 0.0 &&
+                              double(meshed.load()) * cache.patchSecondsPerPart > cache.assembleSeconds;
     if (same && !cheaperWhole) {
         const auto patchStart = std::chrono::steady_clock::now();
         const double relayoutBefore = cache.relayoutSeconds;
