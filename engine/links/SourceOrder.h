@@ -35,12 +35,30 @@ inline void sortBySource(const Hierarchy& h, const LinkStore& links, std::vector
     for (std::size_t i = 0; i < list.size(); ++i) list[i] = keyed[i].second;
 }
 
-// The links of a list in source order whose source lies in `sources`.
+// The links of a list in source order whose source lies in `sources`. Each
+// look at a key reads three places far apart (the list, the link, its
+// source's range), so it looks at few: the ends first (a range often holds
+// all of a list, or begins before it), then the end of the run by galloping
+// from its start (runs are mostly short).
 inline std::span<const LinkId> linksFrom(const Hierarchy& h, const LinkStore& links, const std::vector<LinkId>& list,
                                          const IndexRange& sources) {
     const auto key = [&](LinkId id) { return sourceIndex(h, links, id); };
-    const auto lo = std::partition_point(list.begin(), list.end(), [&](LinkId id) { return key(id) < sources.first; });
-    const auto hi = std::partition_point(lo, list.end(), [&](LinkId id) { return key(id) <= sources.last; });
+    const auto begin = list.begin(), end = list.end();
+    if (begin == end) return {};
+    const auto lo = key(*begin) >= sources.first
+                        ? begin
+                        : std::partition_point(begin + 1, end, [&](LinkId id) { return key(id) < sources.first; });
+    if (lo == end || key(list.back()) <= sources.last) return {lo, end};
+    // The last key lies past the range: the run ends before it.
+    std::ptrdiff_t inside = -1, past = (end - 1) - lo;
+    for (std::ptrdiff_t probe = 0; probe < past; probe = 2 * probe + 1) {
+        if (key(lo[probe]) > sources.last) {
+            past = probe;
+            break;
+        }
+        inside = probe;
+    }
+    const auto hi = std::partition_point(lo + inside + 1, lo + past, [&](LinkId id) { return key(id) <= sources.last; });
     return {lo, hi};
 }
 
