@@ -106,10 +106,11 @@ void LineSpaceUpdate::spendOn(std::size_t index, std::size_t budget,
         double transfer;
     };
     std::vector<Order> order;
+    const Visit& visit = visits_[index];
     for (Group& g : visits_[index].groups) {
         double transfer = 0.0;
         bool refining = false;
-        for (LinkId pl : g.plinks)
+        for (LinkId pl : visit.plinks(g))
             if (links_[pl].live && links_[pl].passive) {
                 refining = true;
                 transfer += heapKey(links_[pl]);
@@ -120,21 +121,24 @@ void LineSpaceUpdate::spendOn(std::size_t index, std::size_t budget,
     for (const Order& o : order) {
         Group& g = *o.group;
         if (left == kUnlimited) {
-            for (std::size_t child : g.visits) next.emplace_back(child, kUnlimited);
+            for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child)
+                next.emplace_back(child, kUnlimited);
             continue;
         }
         if (g.work <= left) {
             left -= g.work;
-            for (std::size_t child : g.visits) next.emplace_back(child, visits_[child].work);
+            for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child)
+                next.emplace_back(child, visits_[child].work);
             continue;
         }
         // Not enough budget to go down.
-        const bool surfaces = std::all_of(g.plinks.begin(), g.plinks.end(), [&](LinkId pl) {
+        const std::span<const LinkId> plinks = visit.plinks(g);
+        const bool surfaces = std::all_of(plinks.begin(), plinks.end(), [&](LinkId pl) {
             const Link& l = links_[pl];
             return !l.live || !l.passive || (h_[l.source].isSurface() && h_[l.receiver].isSurface());
         });
         if (surfaces) {
-            for (LinkId pl : g.plinks) {
+            for (LinkId pl : plinks) {
                 if (!links_[pl].live || !links_[pl].passive) continue;
                 reinstate(pl);
                 ++stats.budgetReinstated;
@@ -146,7 +150,7 @@ void LineSpaceUpdate::spendOn(std::size_t index, std::size_t budget,
         // reaches, each child visit its share; the rest waits, stale.
         const std::size_t give = left;
         left = 0;
-        for (std::size_t child : g.visits) {
+        for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child) {
             const std::size_t share =
                 g.work == 0 ? 0 : std::size_t(double(give) * double(visits_[child].work) / double(g.work));
             if (share > 0 && share >= visits_[child].own())
@@ -170,7 +174,8 @@ void LineSpaceUpdate::defer(std::size_t index) {
                 staleMark_[id] = 1;
                 stale_.emplace_back(id, motionBefore_);
             }
-        for (const Group& g : v.groups) stack.insert(stack.end(), g.visits.begin(), g.visits.end());
+        for (const Group& g : v.groups)
+            for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child) stack.push_back(child);
     }
 }
 

@@ -154,12 +154,16 @@ public:
     std::vector<std::array<glm::dvec3, 2>> changedOutlines() const;
 
 private:
-    // The affected p-links of a visit with nested source ranges, descended together.
+    // The affected p-links of a visit with nested source ranges, descended
+    // together: a run of the visit's `affected`, and a run of visits (its
+    // line-space children) below. Runs, not lists: a frame makes tens of
+    // thousands of groups, and their lists were a fifth of a budget-0
+    // frame's time in allocation.
     struct Group {
         IndexRange range;
-        std::vector<LinkId> plinks;
-        std::vector<std::size_t> visits;  // the child visits below
-        std::size_t work = 0;             // link updates below, pulled up
+        std::uint32_t firstPlink = 0, plinkCount = 0;  // in the visit's `affected`
+        std::size_t firstVisit = 0, visitCount = 0;    // the child visits
+        std::size_t work = 0;                          // link updates below, pulled up
     };
     // A node of the first traversal and the source range it looks at.
     struct Visit {
@@ -170,7 +174,13 @@ private:
         std::vector<Group> groups;
         std::size_t work = 0;  // own() plus everything below
         std::size_t own() const { return affected.size() + candidates.size(); }
+        std::span<const LinkId> plinks(const Group& g) const {
+            return std::span(affected).subspan(g.firstPlink, g.plinkCount);
+        }
     };
+    // Starts the visit record `visitCount_` (reusing the record and its
+    // lists' storage from earlier frames) and returns its index.
+    std::size_t addVisit(ElementId he, const IndexRange& ind);
     // Fig. 6: the first traversal, from the root (visit record 0). It only
     // finds (shaft tests, index ranges) and pulls up the work each visit's
     // links and its groups' line-space children call for (sec. 6.1).
@@ -413,7 +423,11 @@ private:
     // objects moved; and its value before the last move.
     double motion_ = 0.0, motionBefore_ = 0.0;
     std::vector<std::uint8_t> staleMark_;
-    std::vector<Visit> visits_;
+    std::vector<Visit> visits_;  // this frame's are the first visitCount_
+    std::size_t visitCount_ = 0;
+    // Per visit of a level: its child visits (node, source range), kept
+    // with their storage from frame to frame.
+    std::vector<std::vector<std::pair<ElementId, IndexRange>>> childVisits_;
     std::vector<LinkId> doomed_;  // removeLineSpaceChildren's, kept to spare an allocation per node
     std::vector<LinkId> modified_;  // this frame's modified links, for the overlay
     std::vector<LinkId> overlayLinks_;       // what modifiedLinks() draws

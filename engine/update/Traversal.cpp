@@ -70,15 +70,17 @@ bool LineSpaceUpdate::cutBefore(ElementId s, ElementId r) const {
 
 void LineSpaceUpdate::findModifiedLinks() {
     refiner_.sortLinkLists();  // what the last frame appended (links/SourceOrder.h)
-    visits_.assign(1, Visit{h_.root(), h_.range(h_.root()), {}, {}, {}, 0});
+    visitCount_ = 0;
+    addVisit(h_.root(), h_.range(h_.root()));
     // Level by level, each level's visits on all cores: a visit only reads,
     // and stamps its own candidates (the visits of a level have disjoint
     // subtrees, or disjoint source ranges on the same node).
     std::vector<std::size_t> level{0}, next;
-    std::vector<std::vector<std::pair<ElementId, IndexRange>>> children;
+    std::vector<std::vector<std::pair<ElementId, IndexRange>>>& children = childVisits_;
     std::vector<std::size_t> tests;
     while (!level.empty()) {
-        children.assign(level.size(), {});
+        if (children.size() < level.size()) children.resize(level.size());
+        for (std::size_t i = 0; i < level.size(); ++i) children[i].clear();
         tests.assign(level.size(), 0);
         tbb::parallel_for(std::size_t(0), level.size(),
                           [&](std::size_t i) { tests[i] = visitNode(visits_[level[i]], children[i]); });
@@ -87,27 +89,41 @@ void LineSpaceUpdate::findModifiedLinks() {
             shaftTests_ += tests[i];
             // The child visits, in the order of the groups and of the children.
             std::size_t k = 0;
-            for (Group& g : visits_[level[i]].groups)
+            for (Group& g : visits_[level[i]].groups) {
+                g.firstVisit = visitCount_;
                 while (k < children[i].size() && children[i][k].second.first == g.range.first &&
                        children[i][k].second.last == g.range.last) {
-                    g.visits.push_back(visits_.size());
-                    next.push_back(visits_.size());
-                    visits_.push_back(Visit{children[i][k].first, children[i][k].second, {}, {}, {}, 0});
+                    next.push_back(addVisit(children[i][k].first, children[i][k].second));
                     ++k;
                 }
+                g.visitCount = visitCount_ - g.firstVisit;
+            }
         }
         level.swap(next);
     }
     // Pull the work up (sec. 6.1): a visit's children come after it.
-    for (std::size_t i = visits_.size(); i-- > 0;) {
+    for (std::size_t i = visitCount_; i-- > 0;) {
         Visit& v = visits_[i];
         v.work = v.own();
         for (Group& g : v.groups) {
             g.work = 0;
-            for (std::size_t child : g.visits) g.work += visits_[child].work;
+            for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child)
+                g.work += visits_[child].work;
             v.work += g.work;
         }
     }
+}
+
+std::size_t LineSpaceUpdate::addVisit(ElementId he, const IndexRange& ind) {
+    if (visitCount_ == visits_.size()) visits_.emplace_back();
+    Visit& v = visits_[visitCount_];
+    v.he = he;
+    v.ind = ind;
+    v.affected.clear();
+    v.candidates.clear();
+    v.groups.clear();
+    v.work = 0;
+    return visitCount_++;
 }
 
 std::size_t LineSpaceUpdate::visitNode(Visit& v, std::vector<std::pair<ElementId, IndexRange>>& children) {
@@ -125,10 +141,11 @@ std::size_t LineSpaceUpdate::visitNode(Visit& v, std::vector<std::pair<ElementId
     // q's; visiting the children for each of them again would repeat the same
     // traversal. (The affected p-links are in source order: a range comes
     // before the ranges inside it.)
-    for (LinkId pl : v.affected) {
-        const IndexRange& r = h_.range(links_[pl].source);
-        if (v.groups.empty() || !v.groups.back().range.contains(r)) v.groups.push_back(Group{r, {}, {}, 0});
-        v.groups.back().plinks.push_back(pl);
+    for (std::size_t k = 0; k < v.affected.size(); ++k) {
+        const IndexRange& r = h_.range(links_[v.affected[k]].source);
+        if (v.groups.empty() || !v.groups.back().range.contains(r))
+            v.groups.push_back(Group{r, static_cast<std::uint32_t>(k), 0, 0, 0, 0});
+        ++v.groups.back().plinkCount;
     }
     // Each group goes on below every child: a child with no link from the
     // group's range finds nothing there (one binary search, which a test for
