@@ -339,7 +339,7 @@ TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     }
     engine.setDynamicObject("bookcase-1");
     UpdateSettings tight;
-    tight.deadlineSeconds = 2.0 * chairTraversal;
+    tight.deadlineSeconds = 3.0 * chairTraversal;
     const FrameStats first =
         engine.moveObjects({{"bookcase-1", translation(V(0.02, 0.0, 0.0)) * placed("bookcase-1")}}, tight);
     EXPECT_EQ(first.deferred, 1u);
@@ -348,11 +348,11 @@ TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     engine.refinePending();  // the bookcase's move is made (and measured)
     const FrameStats chair = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, tight);
     EXPECT_EQ(chair.deferred, 0u);
-    // A frame its traversal would fill but for a fifth waits too: the
-    // traversal may take only kTraversalShare (3/4) of the frame, the rest is
+    // A frame its traversal would take three fifths of waits too: the
+    // traversal may take only kTraversalShare (1/2) of the frame, the rest is
     // for the link updates it finds.
     UpdateSettings filled;
-    filled.deadlineSeconds = 1.2 * std::min(chairTraversal, chair.traversalSeconds);  // the least measured
+    filled.deadlineSeconds = 1.65 * std::min(chairTraversal, chair.traversalSeconds);  // the least measured
     const FrameStats waits = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
     EXPECT_EQ(waits.deferred, 1u);
     EXPECT_EQ(waits.shaftTests, 0u);
