@@ -234,8 +234,11 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
     // active links (a p-link's transfer is carried by its children), and
     // the links with an end in a deferred object's subtree, in the share of
     // its size it has moved.
-    // Summed per receiver (a receiver's first power puts it on the list).
-    std::vector<double> power(h_.size(), 0.0);
+    // Summed per receiver (a receiver's first power puts it on the list),
+    // in an array kept zero between calls: zeroing one per element each
+    // frame was a fifth of a deferred frame on the building floor.
+    std::vector<double>& power = powerScratch_;
+    if (power.size() < h_.size()) power.resize(h_.size(), 0.0);
     std::vector<ElementId> receivers;
     const auto addPower = [&](ElementId r, double p) {
         if (!(p > 0.0)) return;
@@ -272,7 +275,13 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
         }
     const HElement& root = h_[h_.root()];
     const double area = root.area, total = area * luminance(root.radiosity);
-    if (!(total > 0.0)) return 0.0;
+    const auto clearPower = [&] {
+        for (ElementId r : receivers) power[r] = 0.0;
+    };
+    if (!(total > 0.0)) {
+        clearPower();
+        return 0.0;
+    }
     // The scene's mean reflectance, for receivers that are clusters and for
     // the unsent power, which spreads over everything its senders see.
     double rhoArea = 0.0;
@@ -290,6 +299,7 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
         const double rho = e.isSurface() ? luminance(e.reflectance) : rhoMean;
         if (e.area > 0.0) squares += (rho * power[r]) * (rho * power[r]) / e.area;
     }
+    clearPower();
     // Receivers waiting for a push are off by what they gathered since
     // (times their reflectance), over their own area.
     for (ElementId e : waiting_)
