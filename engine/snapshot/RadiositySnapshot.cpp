@@ -213,11 +213,21 @@ using Key = SnapshotCache::Key;
 // The smoothing's grid: a millionth of the scene's diagonal.
 double keyCellOf(const Aabb& box) { return std::max(1e-300, 1e-6 * glm::length(box.extent())); }
 
+// A vertex's position on that grid (0 to a million cells along the box, 22
+// bits with room either side) and its normal to a thousandth (11 bits),
+// packed into 128 bits: the building floor keeps a million and more keys,
+// and every pass over them reads a third of what six 64-bit numbers took.
 Key vertexKey(const MeshSnapshot& mesh, std::uint32_t i, const glm::dvec3& origin, double cell) {
     const glm::dvec3 p = (glm::dvec3(mesh.positions[i]) - origin) / cell;
     const glm::dvec3 nrm = glm::dvec3(mesh.normals[i]) * 1e3;
-    return Key{std::llround(p.x), std::llround(p.y), std::llround(p.z), std::llround(nrm.x), std::llround(nrm.y),
-               std::llround(nrm.z)};
+    const auto bits = [](double v, long long offset, long long top) {
+        return static_cast<std::uint64_t>(std::clamp(std::llround(v) + offset, 0LL, top));
+    };
+    constexpr long long kCells = (1LL << 22) - 1, kNormal = (1LL << 11) - 1;
+    const auto cellBits = [&](double v) { return bits(v, 1LL << 20, kCells); };
+    const auto normalBits = [&](double v) { return bits(v, 1LL << 10, kNormal); };
+    return Key{cellBits(p.x) | cellBits(p.y) << 22 | normalBits(nrm.x) << 44,
+               cellBits(p.z) | normalBits(nrm.y) << 22 | normalBits(nrm.z) << 33};
 }
 
 // The smoothed value of the group keyed[a, b): the area-weighted mean of

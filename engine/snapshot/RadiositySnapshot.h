@@ -70,8 +70,8 @@ struct SnapshotCache {
     // measured: when patching the re-meshed parts in would cost more (a frame
     // that changed much of a small scene), the mesh is joined anew.
     double assembleSeconds = 0.0;
-    struct Key {
-        std::int64_t x, y, z, nx, ny, nz;
+    struct Key {  // a vertex's position and normal, quantised and packed (vertexKey)
+        std::uint64_t a, b;
         auto operator<=>(const Key&) const = default;
     };
     std::vector<std::pair<Key, std::uint32_t>> keyed;  // sorted
