@@ -33,6 +33,7 @@ FrameStats LineSpaceUpdate::update(const std::vector<ObjectMotion>& motions, con
 FrameStats LineSpaceUpdate::chooseObject(const Aabb& box, const IndexRange& range, bool relinked,
                                          const UpdateSettings& settings) {
     layersChanged_ = true;
+    meanReflectance_.reset();  // polygons may have moved in the tree
     fresh_ = relinked ? std::optional(range) : std::nullopt;
     FrameStats stats = run({{box, box, range}}, settings);
     layersChanged_ = false;
@@ -283,11 +284,16 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
         return 0.0;
     }
     // The scene's mean reflectance, for receivers that are clusters and for
-    // the unsent power, which spreads over everything its senders see.
-    double rhoArea = 0.0;
-    for (std::uint32_t p = 0; p < h_.polygonCount(); ++p)
-        if (const ElementId e = h_.polygonElement(p); e != kNone) rhoArea += h_[e].area * luminance(h_[e].reflectance);
-    const double rhoMean = area > 0.0 ? rhoArea / area : 0.0;
+    // the unsent power, which spreads over everything its senders see. Kept
+    // until an edit or a choice of object (reading every polygon's element
+    // was a third of this on the building floor, each frame).
+    if (!meanReflectance_) {
+        double rhoArea = 0.0;
+        for (std::uint32_t p = 0; p < h_.polygonCount(); ++p)
+            if (const ElementId e = h_.polygonElement(p); e != kNone) rhoArea += h_[e].area * luminance(h_[e].reflectance);
+        meanReflectance_ = area > 0.0 ? rhoArea / area : 0.0;
+    }
+    const double rhoMean = *meanReflectance_;
     // In the units of SolutionError::rms: a receiver r whose irradiance is
     // off by P_r / A_r has its radiosity off by rho_r P_r / A_r over its area
     // A_r, so the area-weighted mean square is sum (rho_r P_r)^2 / A_r over
@@ -443,6 +449,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
                                       const EmissionChange* emission) {
     const auto start = std::chrono::steady_clock::now();
     editStart_ = start;
+    meanReflectance_.reset();  // an edit may change reflectance
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;

@@ -424,6 +424,7 @@ private:
     double motion_ = 0.0, motionBefore_ = 0.0;
     std::vector<std::uint8_t> staleMark_;
     mutable std::vector<double> powerScratch_;  // estimatedError's per-element sums, zero between calls
+    mutable std::optional<double> meanReflectance_;  // estimatedError's, over the polygons' area
     std::vector<Visit> visits_;  // this frame's are the first visitCount_
     std::size_t visitCount_ = 0;
     // Per visit of a level: its child visits (node, source range), kept
