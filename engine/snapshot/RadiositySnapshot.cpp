@@ -498,8 +498,23 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
     }
     // The parts whose vertices moved: the keys their outline vertices had
     // go, and the groups of those keys and of their new ones are summed again.
+    // Whether a vertex is theirs, from the runs of vertices they hold (in
+    // order; a moved object's parts are one run): the keys are in space
+    // order, and looking up each one's part read memory at random (the
+    // building floor keeps a million and more).
     std::vector<Key> touched;
-    const auto mine = [&](std::uint32_t v) { return remeshed[cache.partOfVertex[v]] != 0; };
+    std::vector<std::pair<std::size_t, std::size_t>> runs;
+    for (std::size_t p : changed) {
+        if (!runs.empty() && runs.back().second == cache.vertexAt[p])
+            runs.back().second = cache.vertexAt[p + 1];
+        else
+            runs.emplace_back(cache.vertexAt[p], cache.vertexAt[p + 1]);
+    }
+    const auto mine = [&](std::uint32_t v) {
+        const auto after = std::upper_bound(runs.begin(), runs.end(), std::size_t(v),
+                                            [](std::size_t x, const auto& run) { return x < run.first; });
+        return after != runs.begin() && v < std::prev(after)->second;
+    };
     if (resized) {
         for (const auto& entry : cache.keyed)
             if (mine(entry.second)) touched.push_back(entry.first);
