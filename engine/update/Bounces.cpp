@@ -96,6 +96,8 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             unsentLinks_ = 0;
         }
     }
+    // What waits, or what it has to send, changes (estimatedError sums it again).
+    if (!visited.empty() || !sendNone) unsentPowerKnown_ = false;
     BounceSeries series;
     for (int b = 0; b < settings.maxBounces && !sendNone; ++b) {
         // On a deadline: a bounce, expected to cost per link leaving its

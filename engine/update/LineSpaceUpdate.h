@@ -425,6 +425,10 @@ private:
     std::vector<std::uint8_t> staleMark_;
     mutable std::vector<double> powerScratch_;  // estimatedError's per-element sums, zero between calls
     mutable std::optional<double> meanReflectance_;  // estimatedError's, over the polygons' area
+    // estimatedError's sum of what the unsent elements have yet to send, and
+    // whether it is still right (no push or bounce since it was summed).
+    mutable double unsentPower_ = 0.0;
+    mutable bool unsentPowerKnown_ = false;
     std::vector<Visit> visits_;  // this frame's are the first visitCount_
     std::size_t visitCount_ = 0;
     // Per visit of a level: its child visits (node, source range), kept
