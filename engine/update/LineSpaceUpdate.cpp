@@ -318,7 +318,11 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
     // signs that cancel there, so their sum counts, spread over the scene.
     // Summed again only when it may have changed (a push or a bounce since):
     // a deadline can leave hundreds of thousands waiting frame after frame
-    // (485,000 on the building floor: 17 ms a frame to sum).
+    // (485,000 on the building floor: 17 ms a frame to sum). A move alone
+    // leaves it: a rigid move keeps what each member has to send, and a
+    // cluster whose facets it regroups (a turned object) starts them again
+    // from their powers (Hierarchy), so until the next push or bounce the
+    // sum may still count that cluster's part: an overestimate.
     if (!unsentPowerKnown_) {
         unsentPower_ = 0.0;
         for (ElementId e : unsent_) unsentPower_ += unsentPowerOf(e, false);
