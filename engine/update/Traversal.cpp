@@ -129,9 +129,17 @@ std::size_t LineSpaceUpdate::addVisit(ElementId he, const IndexRange& ind) {
 std::size_t LineSpaceUpdate::visitNode(Visit& v, std::vector<std::pair<ElementId, IndexRange>>& children) {
     std::size_t tests = 0;
     // The links from the visit's range: one run of each list, in source order.
-    for (LinkId pl : linksFrom(h_, links_, h_[v.he].plinks, v.ind))
-        if (affectedByMotion(links_[pl].source, v.he, tests)) v.affected.push_back(pl);
-    for (LinkId id : linksFrom(h_, links_, h_[v.he].links, v.ind)) {
+    // Each link's source box is read at random: the links are asked for a
+    // few places ahead.
+    const std::span<const LinkId> plinks = linksFrom(h_, links_, h_[v.he].plinks, v.ind);
+    for (std::size_t k = 0; k < plinks.size(); ++k) {
+        links_.prefetchAhead(plinks, k);
+        if (affectedByMotion(links_[plinks[k]].source, v.he, tests)) v.affected.push_back(plinks[k]);
+    }
+    const std::span<const LinkId> active = linksFrom(h_, links_, h_[v.he].links, v.ind);
+    for (std::size_t k = 0; k < active.size(); ++k) {
+        links_.prefetchAhead(active, k);
+        const LinkId id = active[k];
         if (linkStamp_[id] == frame_ || !affectedByMotion(links_[id].source, v.he, tests)) continue;
         linkStamp_[id] = frame_;  // older than the frame: within the stamps
         v.candidates.push_back(id);
