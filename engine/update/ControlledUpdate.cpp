@@ -121,14 +121,12 @@ void LineSpaceUpdate::spendOn(std::size_t index, std::size_t budget,
     for (const Order& o : order) {
         Group& g = *o.group;
         if (left == kUnlimited) {
-            for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child)
-                next.emplace_back(child, kUnlimited);
+            for (std::size_t child : g.visits()) next.emplace_back(child, kUnlimited);
             continue;
         }
         if (g.work <= left) {
             left -= g.work;
-            for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child)
-                next.emplace_back(child, visits_[child].work);
+            for (std::size_t child : g.visits()) next.emplace_back(child, visits_[child].work);
             continue;
         }
         // Not enough budget to go down.
@@ -150,7 +148,7 @@ void LineSpaceUpdate::spendOn(std::size_t index, std::size_t budget,
         // reaches, each child visit its share; the rest waits, stale.
         const std::size_t give = left;
         left = 0;
-        for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child) {
+        for (std::size_t child : g.visits()) {
             const std::size_t share =
                 g.work == 0 ? 0 : std::size_t(double(give) * double(visits_[child].work) / double(g.work));
             if (share > 0 && share >= visits_[child].own())
@@ -175,7 +173,7 @@ void LineSpaceUpdate::defer(std::size_t index) {
                 stale_.emplace_back(id, motionBefore_);
             }
         for (const Group& g : v.groups)
-            for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child) stack.push_back(child);
+            for (std::size_t child : g.visits()) stack.push_back(child);
     }
 }
 

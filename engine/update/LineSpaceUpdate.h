@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <map>
 #include <optional>
+#include <ranges>
 #include <array>
 #include <cstdint>
 #include <deque>
@@ -164,6 +165,7 @@ private:
         std::uint32_t firstPlink = 0, plinkCount = 0;  // in the visit's `affected`
         std::size_t firstVisit = 0, visitCount = 0;    // the child visits
         std::size_t work = 0;                          // link updates below, pulled up
+        auto visits() const { return std::views::iota(firstVisit, firstVisit + visitCount); }
     };
     // A node of the first traversal and the source range it looks at.
     struct Visit {

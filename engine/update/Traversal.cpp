@@ -107,8 +107,7 @@ void LineSpaceUpdate::findModifiedLinks() {
         v.work = v.own();
         for (Group& g : v.groups) {
             g.work = 0;
-            for (std::size_t child = g.firstVisit; child < g.firstVisit + g.visitCount; ++child)
-                g.work += visits_[child].work;
+            for (std::size_t child : g.visits()) g.work += visits_[child].work;
             v.work += g.work;
         }
     }
