@@ -246,6 +246,7 @@ LinkId Refiner::attachUnseen(const Link& link) {
     Link& l = links_[id];
     l.gathered = 0.0;  // carries nothing until its rays are cast (activate)
     append(h_[link.receiver].links, link.receiver, id);
+    ++activeLinks_;
     h_[link.source].outLinks.push_back(id);
     return id;
 }
@@ -275,6 +276,7 @@ void Refiner::activate(LinkId id) {
 void Refiner::enlist(LinkId id) {
     Link& l = links_[id];
     append(h_[l.receiver].links, l.receiver, id);
+    ++activeLinks_;
     h_[l.source].outLinks.push_back(id);
     l.passive = false;
     if (l.visStale) refreshVisibility(l);
@@ -287,6 +289,7 @@ void Refiner::deactivate(LinkId id) {
     HElement& r = h_[l.receiver];
     l.gathered = 0.0;
     orderedErase(r.links, id);
+    --activeLinks_;
     unorderedErase(h_[l.source].outLinks, id);
     append(r.plinks, l.receiver, id);
     h_[l.source].outPlinks.push_back(id);

@@ -200,14 +200,7 @@ void LineSpaceUpdate::prunePending() {
 }
 
 void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_point start) {
-    // On all cores: at budget 0 the stale links' keys are a tenth of a frame.
-    stats.links = tbb::parallel_reduce(
-        tbb::blocked_range<ElementId>(0, ElementId(h_.size())), std::size_t(0),
-        [&](const tbb::blocked_range<ElementId>& r, std::size_t n) {
-            for (ElementId e = r.begin(); e < r.end(); ++e) n += h_[e].links.size();
-            return n;
-        },
-        std::plus<>());
+    stats.links = refiner_.activeLinks();
     stats.elements = h_.liveCount();
     countWaiting(stats);
     // The light changes whose push has been made are in the solution now.

@@ -157,5 +157,43 @@ TEST(Refiner, ACloseFacingSourceReachesTheReceiversChildrenWhereTheReceiverIsBri
     }
 }
 
+// The count of active links the frames report is kept as links come and
+// go: it equals every receiver's list summed, after links are attached,
+// refined (unseen ones included), reinstated and removed.
+TEST(Refiner, KeepsTheCountOfActiveLinks) {
+    const Scene scene = emitterFloorBlocker(1.0, 5.0, horizontal(1.0, -1.0, 0.5, -1.0, 2.0, true));
+    Hierarchy h(scene, 1e-6);
+    LinkStore links;
+    RayCaster rays;
+    std::vector<std::uint32_t> all(scene.polygons.size());
+    for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+    rays.setLayer(Layer::Static, scene, all);
+    Refiner refiner(h, links, rays, RefineSettings{});
+    const auto summed = [&] {
+        std::size_t n = 0;
+        for (ElementId e = 0; e < h.size(); ++e) n += h[e].links.size();
+        return n;
+    };
+    EXPECT_EQ(refiner.activeLinks(), 0u);
+    const LinkId first = refiner.attach(refiner.compute(h.polygonElement(0), h.polygonElement(1)));
+    const LinkId second = refiner.attach(refiner.compute(h.polygonElement(0), h.polygonElement(2)));
+    EXPECT_EQ(refiner.activeLinks(), 2u);
+    std::vector<LinkId> created;
+    refiner.refine({first}, created, true);  // the children's rays deferred
+    ASSERT_FALSE(created.empty());
+    EXPECT_EQ(refiner.activeLinks(), summed());
+    refiner.castPendingRays(created);
+    EXPECT_EQ(refiner.activeLinks(), summed());
+    // Reinstated: the children go, the p-link is active again.
+    for (LinkId c : created) refiner.remove(c);
+    refiner.activate(first);
+    EXPECT_EQ(refiner.activeLinks(), 2u);
+    EXPECT_EQ(refiner.activeLinks(), summed());
+    refiner.remove(second);
+    refiner.remove(first);
+    EXPECT_EQ(refiner.activeLinks(), 0u);
+    EXPECT_EQ(summed(), 0u);
+}
+
 }  // namespace
 }  // namespace rad
