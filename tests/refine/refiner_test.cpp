@@ -31,16 +31,26 @@ struct Split {
     double visibility = 0.0;
 };
 
+// A scene's hierarchy and a refiner, every polygon in the static layer.
+struct Refining {
+    Hierarchy h;
+    LinkStore links;
+    RayCaster rays;
+    Refiner refiner;
+    Refining(const Scene& scene, double minArea) : h(scene, minArea), refiner(h, links, rays, RefineSettings{}) {
+        std::vector<std::uint32_t> all(scene.polygons.size());
+        for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+        rays.setLayer(Layer::Static, scene, all);
+    }
+};
+
 // Refines the link from the emitter (facing down, y = 2) to the floor
 // (facing up, y = 0) once, with a black blocker in the static scene.
 Split refineOnce(const Scene& scene, double minArea = 1e-6) {
-    Hierarchy h(scene, minArea);
-    LinkStore links;
-    RayCaster rays;
-    std::vector<std::uint32_t> all(scene.polygons.size());
-    for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
-    rays.setLayer(Layer::Static, scene, all);
-    Refiner refiner(h, links, rays, RefineSettings{});
+    Refining r0(scene, minArea);
+    Hierarchy& h = r0.h;
+    LinkStore& links = r0.links;
+    Refiner& refiner = r0.refiner;
     const ElementId s = h.polygonElement(0), r = h.polygonElement(1);
     const LinkId id = refiner.attach(refiner.compute(s, r));
     Split out;
@@ -162,13 +172,9 @@ TEST(Refiner, ACloseFacingSourceReachesTheReceiversChildrenWhereTheReceiverIsBri
 // refined (unseen ones included), reinstated and removed.
 TEST(Refiner, KeepsTheCountOfActiveLinks) {
     const Scene scene = emitterFloorBlocker(1.0, 5.0, horizontal(1.0, -1.0, 0.5, -1.0, 2.0, true));
-    Hierarchy h(scene, 1e-6);
-    LinkStore links;
-    RayCaster rays;
-    std::vector<std::uint32_t> all(scene.polygons.size());
-    for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
-    rays.setLayer(Layer::Static, scene, all);
-    Refiner refiner(h, links, rays, RefineSettings{});
+    Refining r(scene, 1e-6);
+    const Hierarchy& h = r.h;
+    Refiner& refiner = r.refiner;
     const auto summed = [&] {
         std::size_t n = 0;
         for (ElementId e = 0; e < h.size(); ++e) n += h[e].links.size();
