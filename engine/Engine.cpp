@@ -1027,6 +1027,12 @@ std::string channels(const glm::dvec3& v) {
     return out.str();
 }
 
+std::string number(double x) {
+    std::ostringstream out;
+    out << x;
+    return out.str();
+}
+
 }  // namespace
 
 FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const UpdateSettings& settings) {
@@ -1042,10 +1048,10 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
                                         s.scene.sourcePath);
         if (light && e.reflectance)
             throw std::invalid_argument("'" + e.object + "' is a punctual light: it has no reflectance");
-        if (e.emission && (!glm::all(glm::greaterThanEqual(*e.emission, glm::dvec3(0.0))) ||
-                           !std::isfinite(e.emission->x + e.emission->y + e.emission->z)))
+        if (e.emission && !(glm::all(glm::greaterThanEqual(*e.emission, glm::dvec3(0.0))) &&
+                            glm::all(glm::lessThanEqual(*e.emission, glm::dvec3(kMaxEmission)))))
             throw std::invalid_argument("emission " + channels(*e.emission) + " of '" + e.object +
-                                        "': each channel must be finite and at least 0");
+                                        "': each channel must be at least 0 and at most " + number(kMaxEmission));
         if (e.reflectance && !(glm::all(glm::greaterThanEqual(*e.reflectance, glm::dvec3(0.0))) &&
                                glm::all(glm::lessThanEqual(*e.reflectance, glm::dvec3(1.0)))))
             throw std::invalid_argument("reflectance " + channels(*e.reflectance) + " of '" + e.object +

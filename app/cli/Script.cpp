@@ -93,8 +93,12 @@ Script readScript(const std::string& path) {
         }
         if (a.contains("emission")) {
             const auto v = numbers(a, "emission", 3, where);
-            if (v[0] < 0.0 || v[1] < 0.0 || v[2] < 0.0)
-                throw UsageError(where + ": emission must be at least 0 in each channel");
+            for (double x : v)
+                if (x < 0.0 || x > kMaxEmission) {
+                    std::ostringstream bound;
+                    bound << kMaxEmission;
+                    throw UsageError(where + ": emission must be at least 0 and at most " + bound.str() + " in each channel");
+                }
             editOf(script, object).emission = glm::dvec3(v[0], v[1], v[2]);
             ++done;
         }

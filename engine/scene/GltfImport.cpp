@@ -1000,12 +1000,16 @@ class Importer {
         }
         out.emission =
             glm::dvec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]) * strength;
-        if (!std::isfinite(out.emission.x + out.emission.y + out.emission.z))
-            fail(item, "emissiveFactor times emissiveStrength overflows to Inf");
         for (int c = 0; c < 3; ++c) {
             if (out.emission[c] < 0.0) {
                 std::ostringstream s;
                 s << "emission " << out.emission[c] << " in channel " << c << " is negative";
+                fail(item, s.str());
+            }
+            if (!(out.emission[c] <= kMaxEmission)) {
+                std::ostringstream s;
+                s << "emission " << out.emission[c] << " in channel " << c
+                  << " (emissiveFactor times emissiveStrength) is above the largest accepted, " << kMaxEmission;
                 fail(item, s.str());
             }
         }

@@ -176,6 +176,9 @@ TEST(CliScript, BadScriptsFailWithOneLineNamingTheAction) {
         {R"({"frames": 2, "actions": [{"object": "tall-block", "translate": [0, 0, 1]},
              {"object": "back-wall", "reflectance": [0.5, 1.5, 0.5]}]})", "action 2 ('back-wall')"},
         {R"({"frames": 2, "actions": [{"object": "light", "emission": [-1, 0, 0]}]})", "emission"},
+        // Finite, but brighter than any light (kMaxEmission): refused before the solve.
+        {R"({"frames": 2, "actions": [{"object": "light", "emission": [1.7e308, 1e308, 1e308]}]})",
+         "action 1 ('light'): emission must be at least 0 and at most 1e+12"},
         {R"({"frames": 2, "actions": [{"object": "tall-block", "rotate": [0, 0, 0, 10]}]})", "axis"},
         {R"({"frames": 2, "actions": [{"object": "light", "spin": 3}]})", "spin"},
         {R"({"frames": 0, "actions": [{"object": "light", "translate": [0, 0, 1]}]})", "frames"},

@@ -1166,6 +1166,22 @@ TEST(GltfImportErrors, InfiniteFactor) {
     expectOneLineError(importError(file), file, "material 'Hot'");
 }
 
+// Finite, but brighter than any light: refused by its value (kMaxEmission).
+TEST(GltfImportErrors, EmissionAboveTheLargestAccepted) {
+    TempDir dir;
+    GltfBuilder g;
+    const int mat = g.addMaterial(
+        "{\"name\":\"Sun\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.5,0.5,1]},"
+        "\"emissiveFactor\":[1,1,1],"
+        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":2e12}}}");
+    addRectMesh(g, "Rect", mat);
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    const std::string message = importError(file);
+    expectOneLineError(message, file, "material 'Sun'");
+    EXPECT_NE(message.find("above the largest accepted, 1e+12"), std::string::npos) << message;
+}
+
 TEST(GltfImportErrors, ReflectanceOutsideUnitInterval) {
     TempDir dir;
     for (const char* factor : {"[1.2,0.5,0.5,1]", "[0.5,-0.1,0.5,1]"}) {

@@ -299,6 +299,9 @@ TEST(MaterialEdit, BadValuesAndObjectsAreRefusedByName) {
     };
     EXPECT_NE(message("lamp-2", V(-1.0, 0.0, 0.0), std::nullopt).find("emission"), std::string::npos);
     EXPECT_NE(message("lamp-2", V(std::nan(""), 0.0, 0.0), std::nullopt).find("lamp-2"), std::string::npos);
+    // Each channel finite, their sum not: refused for what it is, too bright.
+    EXPECT_NE(message("lamp-2", V(1.7e308, 1e308, 1e308), std::nullopt).find("at most 1e+12"), std::string::npos);
+    EXPECT_NE(message("lamp-2", V(2e12, 0.0, 0.0), std::nullopt).find("at most 1e+12"), std::string::npos);
     EXPECT_NE(message("wall-x0", std::nullopt, V(0.5, 1.2, 0.5)).find("reflectance"), std::string::npos);
     EXPECT_NE(message("no-such-thing", V(1.0), std::nullopt).find("no-such-thing"), std::string::npos);
     // Both lamps dimmed below what the update's differences resolve at once.

@@ -95,8 +95,8 @@ public:
     // material in the scene) and updates the solution without a new solve:
     // a partial push-pull from its elements, further bounces through the
     // links leaving everything that changed, and refinement that follows the
-    // light, within the settings' budget. Emission: finite, each channel at
-    // least 0. Reflectance: each channel in [0, 1], values above
+    // light, within the settings' budget. Emission: each channel in
+    // [0, kMaxEmission] (Scene.h). Reflectance: each channel in [0, 1], values above
     // kMaxReflectance (Gltf.h) read as it. Throws std::invalid_argument naming
     // the object and the value otherwise, or for an unknown object.
     FrameStats editMaterial(const std::string& object, const std::optional<glm::dvec3>& emission,

@@ -40,10 +40,16 @@ struct Texture {
     glm::dvec3 mean() const;  // linear RGB, over the whole image
 };
 
+// The brightest emission accepted, per channel of E: far above any real
+// light (the sun's surface emits about 6e7 W/m^2), and far enough below the
+// double range that power summed over a scene, and squared in the error
+// estimate, stays finite. Files, edits and scripts above it are refused.
+inline constexpr double kMaxEmission = 1e12;
+
 struct Material {
     std::string name;
     glm::dvec3 reflectance{0.0};  // rho, each channel in [0,1)
-    glm::dvec3 emission{0.0};     // E, each channel >= 0
+    glm::dvec3 emission{0.0};     // E, each channel in [0, kMaxEmission]
     // A base colour texture (index into Scene::textures), or -1. Then
     // `reflectance` is the mean over the whole texture (glTF's
     // baseColorFactor times the texture's mean), and each surface element
