@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace rad {
 
@@ -23,11 +24,13 @@ int maxQuadtreeDepth(double area, double minArea) {
 std::uint64_t quadtreeIndexCount(double area, double minArea, const std::string& what) {
     const int depth = maxQuadtreeDepth(area, minArea);
     // (4^(D+1) - 1) / 3 fits in 64 bits for D <= 31.
-    if (depth > 31)
-        throw IndexRangeOverflow(what + ": the area threshold " + std::to_string(minArea) +
-                                 " allows " + std::to_string(depth) +
+    if (depth > 31) {
+        std::ostringstream shown;  // 1e-300 m^2, not 0.000000
+        shown << minArea;
+        throw IndexRangeOverflow(what + ": the area threshold " + shown.str() + " m^2 allows " + std::to_string(depth) +
                                  " quadtree levels, more than 64-bit index ranges can number "
                                  "(31 at most); raise the minimum area");
+    }
     std::uint64_t power = 1;
     for (int i = 0; i <= depth; ++i) power *= 4;
     return (power - 1) / 3;

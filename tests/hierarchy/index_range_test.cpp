@@ -39,6 +39,8 @@ TEST(IndexRange, OverflowIsAnErrorNotAWrap) {
         FAIL() << "no overflow reported";
     } catch (const IndexRangeOverflow& e) {
         EXPECT_NE(std::string(e.what()).find("polygon 7"), std::string::npos);
+        // The threshold as given, not rounded to 0.000000.
+        EXPECT_NE(std::string(e.what()).find("1e-30 m^2"), std::string::npos) << e.what();
     }
     EXPECT_THROW(checkedAdd(~std::uint64_t(0), 1, "cluster"), IndexRangeOverflow);
     // The hierarchy of a real scene with a threshold that small refuses to build.
