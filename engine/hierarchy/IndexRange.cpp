@@ -25,9 +25,11 @@ std::uint64_t quadtreeIndexCount(double area, double minArea, const std::string&
     const int depth = maxQuadtreeDepth(area, minArea);
     // (4^(D+1) - 1) / 3 fits in 64 bits for D <= 31.
     if (depth > 31) {
-        std::ostringstream shown;  // 1e-300 m^2, not 0.000000
+        // The smallest element numbered (the hierarchy numbers a level below
+        // the minimum area), as 1e-300 m^2 rather than 0.000000.
+        std::ostringstream shown;
         shown << minArea;
-        throw IndexRangeOverflow(what + ": the area threshold " + shown.str() + " m^2 allows " + std::to_string(depth) +
+        throw IndexRangeOverflow(what + ": elements down to " + shown.str() + " m^2 would take " + std::to_string(depth) +
                                  " quadtree levels, more than 64-bit index ranges can number "
                                  "(31 at most); raise the minimum area");
     }
