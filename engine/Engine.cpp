@@ -860,6 +860,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         const ElementId cluster = s.hierarchy.objectCluster(object);
         s.hierarchy.updateGeometry(cluster);
         s.hierarchy.refreshAncestors(cluster);
+        s.updater.clustersMoved(cluster);
         boxes.insert(boxes.end(), {before, s.scene.objectBounds(object)});
     }
     s.rays.commitInstances();

@@ -262,6 +262,7 @@ void Hierarchy::release(ElementId id) {
     elements_[id] = HElement{};
     bounds_[id] = ElementBounds{};
     free_.push_back(id);
+    ++releases_;
 }
 
 void Hierarchy::finishCluster(ElementId id) {
@@ -486,6 +487,7 @@ void Hierarchy::removeChildren(ElementId id) {
         elements_[e] = HElement{};
         bounds_[e] = ElementBounds{};
         free_.push_back(e);
+        ++releases_;
     }
 }
 

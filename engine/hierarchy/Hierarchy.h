@@ -58,6 +58,9 @@ public:
     std::size_t liveCount() const { return elements_.size() - free_.size(); }
     // Not freed (every element but the root has a parent until release()).
     bool isLive(ElementId id) const { return id == root_ || elements_[id].parent != kNone; }
+    // How many elements were ever freed: what keeps a value per element
+    // (an id may be freed, and given again) knows by it whether any was.
+    std::uint64_t releases() const { return releases_; }
     double minArea() const { return minArea_; }
 
     // The surface element of each input polygon (quadtree root).
@@ -164,6 +167,7 @@ private:
     std::vector<QuadraturePoints> quadrature_;  // parallel to elements_
     std::vector<glm::dvec3> direct_;     // parallel to elements_ once a light link exists
     std::vector<ElementId> free_;
+    std::uint64_t releases_ = 0;
     std::vector<ClusterShape> shapes_;
     std::vector<std::uint32_t> freeShapes_;
     std::vector<ElementId> polygonElements_;

@@ -247,7 +247,7 @@ LinkId Refiner::attachUnseen(const Link& link) {
     l.gathered = 0.0;  // carries nothing until its rays are cast (activate)
     append(h_[link.receiver].links, link.receiver, id);
     ++activeLinks_;
-    h_[link.source].outLinks.push_back(id);
+    addOutLink(link.source, id);
     return id;
 }
 
@@ -277,7 +277,7 @@ void Refiner::enlist(LinkId id) {
     Link& l = links_[id];
     append(h_[l.receiver].links, l.receiver, id);
     ++activeLinks_;
-    h_[l.source].outLinks.push_back(id);
+    addOutLink(l.source, id);
     l.passive = false;
     if (l.visStale) refreshVisibility(l);
     l.gathered = l.formFactor();
@@ -290,11 +290,23 @@ void Refiner::deactivate(LinkId id) {
     l.gathered = 0.0;
     orderedErase(r.links, id);
     --activeLinks_;
-    unorderedErase(h_[l.source].outLinks, id);
+    eraseOutLink(l.source, id);
     append(r.plinks, l.receiver, id);
     h_[l.source].outPlinks.push_back(id);
     l.passive = true;
     markStale(l.receiver);  // eq. 2: what it gathered through this link goes
+}
+
+void Refiner::addOutLink(ElementId source, LinkId id) {
+    std::vector<LinkId>& out = h_[source].outLinks;
+    out.push_back(id);
+    if (recordSenders_ && out.size() == 1) sendersChanged_.push_back(source);
+}
+
+void Refiner::eraseOutLink(ElementId source, LinkId id) {
+    std::vector<LinkId>& out = h_[source].outLinks;
+    unorderedErase(out, id);
+    if (recordSenders_ && out.empty()) sendersChanged_.push_back(source);
 }
 
 void Refiner::regather(LinkId id) {

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <array>
 #include <optional>
+#include <utility>
 #include <functional>
 #include <vector>
 
@@ -67,6 +68,12 @@ public:
     // numbered again (Hierarchy::attachToRoot).
     void sortLinkLists();
     void sortAllLinkLists();
+
+    // Elements that began or ceased to be the source of an active link
+    // (what an unsent element has to send goes nowhere without one), from
+    // the call that turned recording on; handed out by takeSendersChanged.
+    void recordSendersChanged() { recordSenders_ = true; }
+    std::vector<ElementId> takeSendersChanged() { return std::exchange(sendersChanged_, {}); }
 
     // Elements whose own irradiance changed since the last takeDirty().
     void markDirty(ElementId e);
@@ -177,6 +184,10 @@ private:
     std::size_t activeLinks_ = 0;
     std::vector<ElementId> dirty_;
     std::vector<ElementId> unordered_;  // elements whose lists were appended to
+    bool recordSenders_ = false;
+    std::vector<ElementId> sendersChanged_;
+    void addOutLink(ElementId source, LinkId id);
+    void eraseOutLink(ElementId source, LinkId id);
 };
 
 }  // namespace rad

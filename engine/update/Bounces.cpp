@@ -61,14 +61,6 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
     const double sendAll = settings.bounceThreshold * reference();
     const double threshold = moving_ ? std::max(settings.moveBounceThreshold * reference(), sendAll) : sendAll;
     std::vector<Transfer> transfers;
-    // Each element waits unsent once, and the links leaving what waits are
-    // counted as it joins.
-    std::vector<char> waits(h_.size(), 0);
-    const auto defer = [&](ElementId e, std::size_t links) {
-        if (std::exchange(waits[e], 1)) return;
-        unsent_.push_back(e);
-        unsentLinks_ += links;
-    };
     // What a deadline kept earlier frames from sending goes out with this
     // frame's changes, when a share of it fits, and choosing that share
     // (reading every candidate, ordering them by power) fits too. Otherwise
@@ -84,20 +76,18 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
                               shareThatFits(stats.changedLeaves, bounceSecondsPerLink_ * double(links) + choosing) <
                                   kLeastShare);
         if (sendNone) {
-            for (ElementId e : unsent_) waits[e] = 1;
             for (ElementId e : visited)
-                if (const std::size_t n = h_[e].outLinks.size()) defer(e, n);
+                if (const std::size_t n = h_[e].outLinks.size()) joinUnsent(e, n);
         } else {
-            for (ElementId e : visited) waits[e] = 1;
-            for (ElementId e : unsent_)
-                if (!std::exchange(waits[e], 1)) visited.push_back(e);
-            std::fill(waits.begin(), waits.end(), 0);
+            // The unsent join the senders, each once.
+            std::vector<char> sends(h_.size(), 0);
+            for (ElementId e : visited) sends[e] = 1;
+            for (ElementId e : unsent_.members())
+                if (!std::exchange(sends[e], 1)) visited.push_back(e);
             unsent_.clear();
             unsentLinks_ = 0;
         }
     }
-    // What waits, or what it has to send, changes (estimatedError sums it again).
-    if (!visited.empty() || !sendNone) unsentPowerKnown_ = false;
     BounceSeries series;
     for (int b = 0; b < settings.maxBounces && !sendNone; ++b) {
         // On a deadline: a bounce, expected to cost per link leaving its
@@ -119,7 +109,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             }
         const double share = idle_ && b == 0 ? 1.0 : shareThatFits(stats.changedLeaves, bounceSecondsPerLink_ * double(links));
         if (share < kLeastShare) {
-            for (const auto& [e, n] : senders) defer(e, n);
+            for (const auto& [e, n] : senders) joinUnsent(e, n);
             break;
         }
         if (share < 1.0) {
@@ -127,7 +117,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             keepShare(
                 senders, share, [](const Sender& s) { return double(s.second); },
                 [&](const Sender& s) { return unsentPowerOf(s.first); },
-                [&](const Sender& s) { defer(s.first, s.second); });
+                [&](const Sender& s) { joinUnsent(s.first, s.second); });
             links = 0;
             for (const auto& [e, n] : senders) links += n;
         }
@@ -143,7 +133,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         std::vector<ElementId> held;
         const bool sent = collectTransfers(visited, {threshold, sendAll, settings.moveBounceThreshold}, transfers,
                                            share < 1.0 || !settings.extrapolateBounces ? nullptr : &series, held);
-        for (ElementId e : held) defer(e, h_[e].outLinks.size());
+        for (ElementId e : held) joinUnsent(e, h_[e].outLinks.size());
         stats.transfers += transfers.size();
         if (!sent) break;
         // In the serial order, so that every irradiance gets the same sum.

@@ -18,7 +18,6 @@
 #include "update/Timing.h"
 
 namespace rad {
-
 bool LineSpaceUpdate::movedEnd(ElementId e) const {
     const IndexRange& r = h_.range(e);
     return std::any_of(motions_.begin(), motions_.end(), [&](const ObjectMotion& m) { return m.range.nestedWith(r); });
@@ -34,7 +33,7 @@ FrameStats LineSpaceUpdate::chooseObject(const Aabb& box, const IndexRange& rang
                                          const UpdateSettings& settings) {
     layersChanged_ = true;
     meanReflectance_.reset();  // polygons may have moved in the tree
-    unsentPowerKnown_ = false;
+    unsent_.forget();
     fresh_ = relinked ? std::optional(range) : std::nullopt;
     FrameStats stats = run({{box, box, range}}, settings);
     layersChanged_ = false;
@@ -309,19 +308,11 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
     // What unsent elements have yet to send spreads over what they see: a
     // moving shadow's darker and lighter parts send changes of opposite
     // signs that cancel there, so their sum counts, spread over the scene.
-    // Summed again only when it may have changed (a push or a bounce since):
-    // a deadline can leave hundreds of thousands waiting frame after frame
-    // (485,000 on the building floor: 17 ms a frame to sum). A move alone
-    // leaves it: a rigid move keeps what each member has to send, and a
-    // cluster whose facets it regroups (a turned object) starts them again
-    // from their powers (Hierarchy), so until the next push or bounce the
-    // sum may still count that cluster's part: an overestimate.
-    if (!unsentPowerKnown_) {
-        unsentPower_ = 0.0;
-        for (ElementId e : unsent_) unsentPower_ += unsentPowerOf(e, false);
-        unsentPowerKnown_ = true;
-    }
-    const double unsent = unsentPower_ * rhoMean;
+    // Kept term by term (UnsentSet): a push, freed elements, links that
+    // begin or cease to leave an element, and a move's clusters (a turned
+    // object's facets may regroup) make their terms again; a rigid move
+    // keeps a surface's B.
+    const double unsent = unsentPower() * rhoMean;
     squares += unsent * unsent / area;
     return std::sqrt(squares * area) / total;
 }
@@ -362,7 +353,7 @@ std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats, bool onTheCl
     }
     const auto began = std::chrono::steady_clock::now();
     std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty(), deadline);
-    if (!visited.empty()) unsentPowerKnown_ = false;  // radiosity moved
+    unsent_.mayHaveChanged(visited);  // radiosity moved
     // Small pushes say more about the call than about elements.
     if (visited.size() >= kPushSample)
         pushSecondsPerElement_ = std::max(secondsSince(began) / double(visited.size()), 0.75 * pushSecondsPerElement_);
@@ -401,6 +392,41 @@ double LineSpaceUpdate::shareThatFits(std::size_t changedLeaves, double work) co
                         tail_.seconds(changedLeaves);
     if (!(left > 0.0)) return 0.0;
     return work > left ? left / work : 1.0;
+}
+
+void LineSpaceUpdate::joinUnsent(ElementId e, std::size_t links) {
+    if (unsent_.join(e)) unsentLinks_ += links;
+}
+
+void LineSpaceUpdate::prepare() {
+    linkStamp_.assign(links_.slots(), 0);
+    staleMark_.assign(links_.slots(), 0);
+    refiner_.recordSendersChanged();  // for the sum of what the unsent have to send
+}
+
+void LineSpaceUpdate::clustersMoved(ElementId objectCluster) {
+    if (unsent_.empty()) return;
+    std::vector<ElementId> moved;
+    for (ElementId a = h_[objectCluster].parent; a != kNone; a = h_[a].parent) moved.push_back(a);
+    for (std::vector<ElementId> stack{objectCluster}; !stack.empty();) {
+        const ElementId e = stack.back();
+        stack.pop_back();
+        if (h_[e].isSurface()) continue;  // a rigid move keeps a surface's B
+        moved.push_back(e);
+        stack.insert(stack.end(), h_[e].children.begin(), h_[e].children.end());
+    }
+    unsent_.mayHaveChanged(moved);
+}
+
+double LineSpaceUpdate::unsentPower() const {
+    // Freed elements (an id may be another's now) call for a new sum; an
+    // element with no active link leaving it has nothing to send.
+    if (unsentReleases_ != h_.releases()) {
+        unsent_.forget();
+        unsentReleases_ = h_.releases();
+    }
+    unsent_.mayHaveChanged(refiner_.takeSendersChanged());
+    return unsent_.sum([this](ElementId e) { return unsentPowerOf(e, false); });
 }
 
 double LineSpaceUpdate::unsentPowerOf(ElementId e, bool absolute) const {
@@ -455,7 +481,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     const auto start = std::chrono::steady_clock::now();
     editStart_ = start;
     meanReflectance_.reset();  // an edit may change reflectance
-    unsentPowerKnown_ = false;
+    unsent_.forget();
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
@@ -582,7 +608,7 @@ void LineSpaceUpdate::judgeAgain(const UpdateSettings& settings, FrameStats& sta
 void LineSpaceUpdate::setLightScale(double scale) {
     if (!(scale > 0.0) || !std::isfinite(scale) || scale == lightScale_) return;
     lightScale_ = scale;
-    unsentPowerKnown_ = false;
+    unsent_.forget();
     // Every element's share of the light moved, reached by the edit's
     // bounces or not.
     for (ElementId e = 0; e < h_.size(); ++e)

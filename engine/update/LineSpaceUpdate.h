@@ -25,6 +25,7 @@
 #include "radiosity/Settings.h"
 #include "radiosity/Stats.h"
 #include "update/EditResponse.h"
+#include "update/UnsentSet.h"
 
 namespace rad {
 
@@ -69,6 +70,10 @@ public:
     // (see Obstacles.h); links with both ends on it whose shafts meet one
     // are updated too.
     void setObstacles(std::vector<Aabb> obstacles) { obstacles_ = std::move(obstacles); }
+    // An object's cluster moved, its shape and those of its ancestors built
+    // again (Hierarchy::updateGeometry, refreshAncestors): what they have to
+    // send may have changed (a turned object's facets regroup).
+    void clustersMoved(ElementId objectCluster);
     // The emission or reflectance of `elements` (and their subtrees)
     // changed: their radiosity is pushed again, the change goes out through
     // further bounces, and refinement follows the light, within the budget.
@@ -110,10 +115,7 @@ public:
     // After a solve: the per-link marks sized to the links, so that the first
     // frame of a drag does not pay for touching them (in the building floor,
     // 7M links, it paid 35 ms).
-    void prepare() {
-        linkStamp_.assign(links_.slots(), 0);
-        staleMark_.assign(links_.slots(), 0);
-    }
+    void prepare();
     // What a further bounce (per link leaving its senders), and the push of
     // the receivers waiting for one, are expected to cost before one was
     // measured: a sweep of the solve, `seconds` over `links` active links.
@@ -407,8 +409,14 @@ private:
     bool moving_ = false;
     // Elements whose change of radiosity a deadline kept from being sent
     // (bounced): the next bounce, in a later frame or idle time, sends it.
-    std::vector<ElementId> unsent_;
+    // Mutable for the sum of what they have to send, which estimatedError
+    // keeps up to date (unsentPower).
+    mutable UnsentSet unsent_;
     std::size_t unsentLinks_ = 0;  // leaving them, counted as they joined
+    mutable std::uint64_t unsentReleases_ = 0;  // h_.releases() at unsent_'s last sum
+    void joinUnsent(ElementId e, std::size_t links);
+    // The sum of unsentPowerOf(e, false) over the unsent elements.
+    double unsentPower() const;
     // What choosing a bounce's senders took per element considered.
     double chooseSecondsPerSender_ = 0.0;
     // The power one of them has yet to send: the sum of its changes
@@ -427,10 +435,6 @@ private:
     std::vector<std::uint8_t> staleMark_;
     mutable std::vector<double> powerScratch_;  // estimatedError's per-element sums, zero between calls
     mutable std::optional<double> meanReflectance_;  // estimatedError's, over the polygons' area
-    // estimatedError's sum of what the unsent elements have yet to send, and
-    // whether it is still right (no push or bounce since it was summed).
-    mutable double unsentPower_ = 0.0;
-    mutable bool unsentPowerKnown_ = false;
     std::vector<Visit> visits_;  // this frame's are the first visitCount_
     std::size_t visitCount_ = 0;
     // Per visit of a level: its child visits (node, source range), kept
