@@ -170,7 +170,7 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             waitingChange_[e] = -1.0;  // pushed now
             return true;
         });
-        visited = pushPull(stats);
+        visited = pushPull(stats, true);
         touch(visited);
         // What was sent ahead is a sender until its radiosity has come to
         // what it sent (each bounce checks it against the threshold), even
@@ -396,7 +396,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     const std::size_t used = stats.spent - spentBefore;
     refineFromHeap(heap, stats, budget == kUnlimited ? kUnlimited : (budget > used ? budget - used : 0));
     // The light that the new links carry, once around.
-    std::vector<ElementId> visited = pushPull(stats);
+    std::vector<ElementId> visited = pushPull(stats, true);
     bounce(std::move(visited), settings, stats);
     clearTouched();  // what moved now is stepped at the next frame
 }

@@ -42,7 +42,7 @@ class UnsentSet {
 
     // The sum over the members of term(e), made only for the terms that may
     // have changed since the last call (every term after forget()), on all
-    // cores and added in order: the same elements give the same sum.
+    // cores and added in order, so that a run gives the same sums each time.
     using Term = std::function<double(ElementId)>;
     double sum(const Term& term);
 
