@@ -18,6 +18,7 @@
 #include "update/Timing.h"
 
 namespace rad {
+
 bool LineSpaceUpdate::movedEnd(ElementId e) const {
     const IndexRange& r = h_.range(e);
     return std::any_of(motions_.begin(), motions_.end(), [&](const ObjectMotion& m) { return m.range.nestedWith(r); });
