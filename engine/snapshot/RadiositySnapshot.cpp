@@ -448,22 +448,6 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
         changed.push_back(p);
     }
     if (changed.empty()) return;
-    // Parts meshed again with their vertices where they were (new light
-    // only, the common case): the sorted keys stand as they are.
-    bool placesKept = !resized;
-    for (std::size_t c = 0; placesKept && c < changed.size(); ++c) {
-        const std::size_t p = changed[c];
-        const MeshSnapshot& part = cache.parts[p].mesh;
-        placesKept = std::equal(part.positions.begin(), part.positions.end(),
-                                mesh.positions.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p])) &&
-                     std::equal(part.normals.begin(), part.normals.end(),
-                                mesh.normals.begin() + static_cast<std::ptrdiff_t>(cache.vertexAt[p])) &&
-                     std::equal(part.indices.begin(), part.indices.end(),
-                                mesh.indices.begin() + static_cast<std::ptrdiff_t>(cache.indexAt[p]),
-                                [&](std::uint32_t local, std::uint32_t global) {
-                                    return std::size_t(local) + cache.vertexAt[p] == std::size_t(global);
-                                });
-    }
     // The part a mesh vertex belongs to, and its own (unsmoothed) value and weight.
     const auto partOf = [&](std::uint32_t v) { return std::size_t(cache.partOfVertex[v]); };
     const auto own = [&](std::uint32_t v) {
@@ -474,95 +458,107 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
         const std::size_t p = partOf(v);
         return cache.parts[p].weights[v - cache.vertexAt[p]];
     };
-    if (placesKept) {
+    // The parts whose vertices moved (a moved object's; all of them when
+    // the mesh moves to a new layout). The others were meshed again with
+    // their vertices where they were: new light only, the common case, and
+    // their keys stand as they are.
+    std::vector<std::uint8_t> moved(changed.size(), 1);
+    if (!resized) {
         tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
             const std::size_t p = changed[c];
-            const SnapshotCache::Part& part = cache.parts[p];
-            const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
-            std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
-            copyTexturing(part.mesh, mesh, offset);
+            const MeshSnapshot& part = cache.parts[p].mesh;
+            const auto at = static_cast<std::ptrdiff_t>(cache.vertexAt[p]);
+            moved[c] = !(std::equal(part.positions.begin(), part.positions.end(), mesh.positions.begin() + at) &&
+                         std::equal(part.normals.begin(), part.normals.end(), mesh.normals.begin() + at) &&
+                         std::equal(part.indices.begin(), part.indices.end(),
+                                    mesh.indices.begin() + static_cast<std::ptrdiff_t>(cache.indexAt[p]),
+                                    [&](std::uint32_t local, std::uint32_t global) {
+                                        return std::size_t(local) + cache.vertexAt[p] == std::size_t(global);
+                                    }));
         });
-        // The keys stand: every group with a vertex of a re-meshed part is
-        // summed again, found in one walk along them (new light on every
-        // polygon, as an edit of a light makes, sorted them all each frame).
-        std::vector<std::uint8_t> mine(mesh.positions.size(), 0);
-        for (std::size_t p : changed)
-            for (std::uint32_t local : cache.parts[p].outline) mine[cache.vertexAt[p] + local] = 1;
-        const std::vector<std::pair<Key, std::uint32_t>>& keyed = cache.keyed;
-        for (std::size_t a = 0, b = 0; a < keyed.size(); a = b) {
-            bool any = false;
-            for (b = a; b < keyed.size() && keyed[b].first == keyed[a].first; ++b) any = any || mine[keyed[b].second];
-            if (any) smoothGroup(keyed, a, b, mesh, own, weight);
-        }
-        return;
     }
-    // The parts whose vertices moved: the keys their outline vertices had
-    // go, and the groups of those keys and of their new ones are summed again.
-    // Whether a vertex is theirs, from the runs of vertices they hold (in
-    // order; a moved object's parts are one run): the keys are in space
-    // order, and looking up each one's part read memory at random (the
-    // building floor keeps a million and more).
-    std::vector<Key> touched;
+    // The keys the moved parts' outline vertices had go. Whether a vertex
+    // is theirs, from the runs of vertices they hold (in order; a moved
+    // object's parts are one run): the keys are in space order, and looking
+    // up each one's part read memory at random (the building floor keeps a
+    // million and more). Only the moved parts' runs: with the 2,000 parts a
+    // chair's frame colours again, a search among all their runs per key
+    // took 26 ms of the floor's snapshot.
+    std::vector<Key> gone;
     std::vector<std::pair<std::size_t, std::size_t>> runs;
-    for (std::size_t p : changed) {
+    for (std::size_t c = 0; c < changed.size(); ++c) {
+        if (!moved[c]) continue;
+        const std::size_t p = changed[c];
         if (!runs.empty() && runs.back().second == cache.vertexAt[p])
             runs.back().second = cache.vertexAt[p + 1];
         else
             runs.emplace_back(cache.vertexAt[p], cache.vertexAt[p + 1]);
     }
-    const auto mine = [&](std::uint32_t v) {
+    const auto inRuns = [&](std::uint32_t v) {
         const auto after = std::upper_bound(runs.begin(), runs.end(), std::size_t(v),
                                             [](std::size_t x, const auto& run) { return x < run.first; });
         return after != runs.begin() && v < std::prev(after)->second;
     };
     if (resized) {
         for (const auto& entry : cache.keyed)
-            if (mine(entry.second)) touched.push_back(entry.first);
+            if (inRuns(entry.second)) gone.push_back(entry.first);
         const auto began = std::chrono::steady_clock::now();
         relayout(mesh, cache, remeshed);  // drops their keys and shifts the others
         const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
         cache.relayoutSeconds = cache.relayoutSeconds > 0.0 ? 0.5 * (cache.relayoutSeconds + took) : took;
     } else {
-        std::erase_if(cache.keyed, [&](const std::pair<Key, std::uint32_t>& entry) {
-            if (!mine(entry.second)) return false;
-            touched.push_back(entry.first);
-            return true;
-        });
+        if (!runs.empty())
+            std::erase_if(cache.keyed, [&](const std::pair<Key, std::uint32_t>& entry) {
+                if (!inRuns(entry.second)) return false;
+                gone.push_back(entry.first);
+                return true;
+            });
         tbb::parallel_for(std::size_t(0), changed.size(), [&](std::size_t c) {
             const std::size_t p = changed[c];
             const SnapshotCache::Part& part = cache.parts[p];
             const auto offset = static_cast<std::uint32_t>(cache.vertexAt[p]);
-            std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
-            std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
             std::copy(part.mesh.colors.begin(), part.mesh.colors.end(), mesh.colors.begin() + offset);
             copyTexturing(part.mesh, mesh, offset);
+            if (!moved[c]) return;
+            std::copy(part.mesh.positions.begin(), part.mesh.positions.end(), mesh.positions.begin() + offset);
+            std::copy(part.mesh.normals.begin(), part.mesh.normals.end(), mesh.normals.begin() + offset);
             for (std::size_t i = 0; i < part.mesh.indices.size(); ++i)
                 mesh.indices[cache.indexAt[p] + i] = part.mesh.indices[i] + offset;
         });
     }
-    // The re-meshed parts' outline vertices, under their new keys.
+    // The moved parts' outline vertices, under their new keys.
     std::vector<std::pair<Key, std::uint32_t>> fresh;
-    for (std::size_t p : changed)
+    for (std::size_t c = 0; c < changed.size(); ++c) {
+        if (!moved[c]) continue;
+        const std::size_t p = changed[c];
         for (std::uint32_t local : cache.parts[p].outline) {
             const auto v = static_cast<std::uint32_t>(cache.vertexAt[p] + local);
             fresh.push_back({vertexKey(mesh, v, cache.keyOrigin, cache.keyCell), v});
-            touched.push_back(fresh.back().first);
         }
-    std::sort(fresh.begin(), fresh.end());
-    const auto middle = static_cast<std::ptrdiff_t>(cache.keyed.size());
-    cache.keyed.insert(cache.keyed.end(), fresh.begin(), fresh.end());
-    std::inplace_merge(cache.keyed.begin(), cache.keyed.begin() + middle, cache.keyed.end());
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    // One walk along both sorted lists, not a binary search per key: the
-    // keys are many, and a search misses the cache at every step.
-    std::size_t a = 0;
-    for (const Key& key : touched) {
-        while (a < cache.keyed.size() && cache.keyed[a].first < key) ++a;
-        std::size_t b = a;
-        while (b < cache.keyed.size() && cache.keyed[b].first == key) ++b;
-        smoothGroup(cache.keyed, a, b, mesh, own, weight);
-        a = b;
+    }
+    if (!fresh.empty()) {
+        std::sort(fresh.begin(), fresh.end());
+        const auto middle = static_cast<std::ptrdiff_t>(cache.keyed.size());
+        cache.keyed.insert(cache.keyed.end(), fresh.begin(), fresh.end());
+        std::inplace_merge(cache.keyed.begin(), cache.keyed.begin() + middle, cache.keyed.end());
+    }
+    std::sort(gone.begin(), gone.end());
+    gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
+    // Summed again: every group with an outline vertex of a changed part,
+    // and every group a moved vertex left, found in one walk along the keys
+    // (new light on every polygon, as an edit of a light makes, sorted them
+    // all each frame).
+    std::vector<std::uint8_t> mine(mesh.positions.size(), 0);
+    for (std::size_t p : changed)
+        for (std::uint32_t local : cache.parts[p].outline) mine[cache.vertexAt[p] + local] = 1;
+    const std::vector<std::pair<Key, std::uint32_t>>& keyed = cache.keyed;
+    std::size_t g = 0;
+    for (std::size_t a = 0, b = 0; a < keyed.size(); a = b) {
+        const Key& key = keyed[a].first;
+        while (g < gone.size() && gone[g] < key) ++g;
+        bool any = g < gone.size() && gone[g] == key;
+        for (b = a; b < keyed.size() && keyed[b].first == key; ++b) any = any || mine[keyed[b].second];
+        if (any) smoothGroup(keyed, a, b, mesh, own, weight);
     }
 }
 
