@@ -437,7 +437,10 @@ void relayout(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::u
 // first when their sizes changed). The smoothing groups any of their outline
 // vertices were in or are in now are summed again from the parts' own
 // values, in key order as a full build sums them.
-void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint8_t>& remeshed) {
+// `walked`: how long the walk along the keys took (its groups' sums
+// included).
+void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint8_t>& remeshed, double& walked) {
+    walked = 0.0;
     std::vector<std::size_t> changed;
     bool resized = false;
     for (std::size_t p = 0; p < remeshed.size(); ++p) {
@@ -552,6 +555,7 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
     for (std::size_t p : changed)
         for (std::uint32_t local : cache.parts[p].outline) mine[cache.vertexAt[p] + local] = 1;
     const std::vector<std::pair<Key, std::uint32_t>>& keyed = cache.keyed;
+    const auto walkStart = std::chrono::steady_clock::now();
     std::size_t g = 0;
     for (std::size_t a = 0, b = 0; a < keyed.size(); a = b) {
         const Key& key = keyed[a].first;
@@ -560,6 +564,7 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
         for (b = a; b < keyed.size() && keyed[b].first == key; ++b) any = any || mine[keyed[b].second];
         if (any) smoothGroup(keyed, a, b, mesh, own, weight);
     }
+    walked = std::chrono::duration<double>(std::chrono::steady_clock::now() - walkStart).count();
 }
 
 }  // namespace
@@ -604,8 +609,8 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
             // it waits too (one build in two at most).
             const std::size_t sofar = meshed.load(std::memory_order_relaxed);
             const bool resizes = part.valid && scratch.leaves.size() != part.leaves;
-            const double needed =
-                double(sofar) * cache.patchSecondsPerPart + (resizes && mayDelayResizes ? cache.relayoutSeconds : 0.0);
+            const double needed = cache.walkSeconds + double(sofar) * cache.patchSecondsPerPart +
+                                  (resizes && mayDelayResizes ? cache.relayoutSeconds : 0.0);
             if (stop && part.valid && (sofar >= kLeastRemeshed || (resizes && mayDelayResizes)) &&
                 std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(needed)) >
@@ -653,15 +658,17 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     // patch then walks the keys once, and costs less than joining the parts
     // anew (which keys and sorts them all), however many there are.
     const bool cheaperWhole = reshaped.load() && cache.assembleSeconds > 0.0 &&
-                              double(meshed.load()) * cache.patchSecondsPerPart > cache.assembleSeconds;
+                              cache.walkSeconds + double(meshed.load()) * cache.patchSecondsPerPart > cache.assembleSeconds;
     if (same && !cheaperWhole) {
         const auto patchStart = std::chrono::steady_clock::now();
         const double relayoutBefore = cache.relayoutSeconds;
-        patch(mesh, cache, remeshed);
+        double walked = 0.0;
+        patch(mesh, cache, remeshed, walked);
         if (const std::size_t n = meshed.load(); n >= kLeastRemeshed) {
-            double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - patchStart).count();
+            double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - patchStart).count() - walked;
             if (cache.relayoutSeconds != relayoutBefore) took = std::max(0.0, took - cache.relayoutSeconds);
             cache.patchSecondsPerPart = 0.5 * (cache.patchSecondsPerPart + took / double(n));
+            cache.walkSeconds = cache.walkSeconds > 0.0 ? 0.5 * (cache.walkSeconds + walked) : walked;
         }
         return left.load();
     }
