@@ -154,8 +154,10 @@ void buildShape(std::span<const ShapePart> children, ClusterShape& shape) {
         for (const ClusterShape::Sample& s : part.samples) {
             cumulative += part.sampleWeight;
             while (k < ClusterShape::kSamples &&
-                   (k + 0.5) / ClusterShape::kSamples * total <= cumulative)
-                shape.samples[k++] = s;
+                   (k + 0.5) / ClusterShape::kSamples * total <= cumulative) {
+                shape.samples[k] = s;
+                shape.samples[k++].p = glm::vec3(glm::dvec3(s.p) + part.offset);
+            }
         }
     // Rounding may leave the last targets unmet: they repeat the last point.
     for (; k < ClusterShape::kSamples && k > 0; ++k) shape.samples[k] = shape.samples[k - 1];

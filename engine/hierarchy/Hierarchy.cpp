@@ -294,11 +294,12 @@ void Hierarchy::finishCluster(ElementId id) {
             auto& samples = surfaceSamples.emplace_back();
             const auto& uv = polygonSampleParams(p.vertexCount);
             const std::uint32_t normal = ClusterShape::Sample::encode(child.normal);
-            for (int i = 0; i < 16; ++i) samples[i] = {glm::vec3(polygonPoint(p, uv[i])), normal, child.polygon};
+            for (int i = 0; i < 16; ++i) samples[i] = {glm::vec3(polygonPoint(p, uv[i]) - c.center), normal, child.polygon};
             parts.push_back({std::span(&surfaceFacets.back(), 1), std::span(samples), child.area / 16.0});
         } else {
             const ClusterShape& cs = shapes_[child.shape];
-            parts.push_back({std::span(cs.facets), std::span(cs.samples.data(), cs.sampleCount), cs.sampleWeight});
+            parts.push_back({std::span(cs.facets), std::span(cs.samples.data(), cs.sampleCount), cs.sampleWeight,
+                             child.center - c.center});
         }
     }
     ClusterShape& shape = shapes_[c.shape];

@@ -9,11 +9,12 @@ namespace rad {
 namespace {
 
 // Newell's vector area: twice the area times the unit normal; exact for planar polygons and
-// well defined (zero) for degenerate ones.
+// well defined (zero) for degenerate ones. Taken relative to the first vertex, so that its
+// rounding scales with the polygon's size, not with its distance from the origin.
 glm::dvec3 vectorArea2(const PatchGeometry& polygon) {
     glm::dvec3 n(0.0);
     const int count = std::clamp(polygon.n, 0, 4);
-    for (int i = 0; i < count; ++i) n += glm::cross(polygon.v[i], polygon.v[(i + 1) % count]);
+    for (int i = 1; i + 1 < count; ++i) n += glm::cross(polygon.v[i] - polygon.v[0], polygon.v[i + 1] - polygon.v[0]);
     return n;
 }
 
@@ -115,6 +116,10 @@ double pointToPolygon(const glm::dvec3& x, const glm::dvec3& nx, const PatchGeom
         scale2 = std::max(scale2, glm::dot(v[i], v[i]));
     }
     if (!(height * height > 1e-24 * scale2)) return 0.0;
+    // Nor closer than coordinates so far from the origin are rounded: a point
+    // on the back face a doubleSided polygon gets, 1000 km out, lies up to
+    // 1e-10 m off it and would see it as a whole hemisphere.
+    if (!(height > 1e-13 * std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)}))) return 0.0;
 
     // Sutherland-Hodgman clip to the half-space above x's tangent plane (nx . (p - x) >= 0):
     // the Lambert contour integral below assumes the whole polygon is visible from x's front.

@@ -212,7 +212,7 @@ std::optional<MergedRegion> convexUnion(const std::map<std::uint32_t, std::uint3
     for (std::size_t i = 0; i < loop.size(); ++i) r.corners[i] = loop[i];
     if (r.count == 4 && !strictlyConvex(r.corners, nrm)) return std::nullopt;
     glm::dvec3 vector(0.0);
-    for (std::size_t i = 0; i < loop.size(); ++i) vector += glm::cross(loop[i], loop[(i + 1) % loop.size()]);
+    for (std::size_t i = 1; i + 1 < loop.size(); ++i) vector += glm::cross(loop[i] - loop[0], loop[i + 1] - loop[0]);
     if (std::abs(0.5 * glm::dot(vector, nrm) - area) > 1e-6 * area) return std::nullopt;
     return r;
 }

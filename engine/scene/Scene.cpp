@@ -60,21 +60,20 @@ glm::dvec3 Texture::mean() const {
 }
 
 glm::dvec3 Polygon::normal() const {
-    // Newell's method: robust for any planar polygon.
+    // Newell's method: robust for any planar polygon. Relative to the first
+    // vertex, so that its rounding is relative to the polygon's size, not to
+    // its distance from the origin (a 8 cm facet 1 km away lost 1e-8 of its
+    // normal to cancellation, 2% at 1000 km).
     glm::dvec3 n(0.0);
-    for (int i = 0; i < vertexCount; ++i) {
-        const glm::dvec3& a = vertices[i];
-        const glm::dvec3& b = vertices[(i + 1) % vertexCount];
-        n += glm::cross(a, b);
-    }
+    for (int i = 1; i + 1 < vertexCount; ++i) n += glm::cross(vertices[i] - vertices[0], vertices[i + 1] - vertices[0]);
     const double len = glm::length(n);
     return len > 0.0 ? n / len : glm::dvec3(0.0);
 }
 
 double Polygon::area() const {
     glm::dvec3 n(0.0);
-    for (int i = 0; i < vertexCount; ++i) n += glm::cross(vertices[i], vertices[(i + 1) % vertexCount]);
-    return 0.5 * glm::length(n);
+    for (int i = 1; i + 1 < vertexCount; ++i) n += glm::cross(vertices[i] - vertices[0], vertices[i + 1] - vertices[0]);
+    return 0.5 * glm::length(n);  // as normal(): relative to the first vertex
 }
 
 glm::dvec3 Polygon::centroid() const {

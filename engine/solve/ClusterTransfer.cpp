@@ -116,12 +116,12 @@ SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const Aabb& towa
     std::array<int, ClusterShape::kSamples> facing{};
     int count = 0;
     for (int k = 0; k < shape.sampleCount; ++k)
-        if (faces(glm::dvec3(shape.samples[k].p), shape.samples[k].octahedronPoint())) facing[count++] = k;
+        if (faces(s.center + glm::dvec3(shape.samples[k].p), shape.samples[k].octahedronPoint())) facing[count++] = k;
     const double facingArea = count * double(shape.sampleWeight);
     const int n = std::min(count, SourcePoints::kMax);
     for (int i = 0; i < n; ++i) {
         const int k = facing[i * count / n];
-        out.p[out.n] = shape.samples[k].p;
+        out.p[out.n] = s.center + glm::dvec3(shape.samples[k].p);
         out.normal[out.n] = shape.samples[k].normal();
         out.polygon[out.n] = shape.samples[k].polygon;
         out.area[out.n++] = facingArea / n;

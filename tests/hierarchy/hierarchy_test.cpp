@@ -66,8 +66,17 @@ std::size_t checkSubtree(const Scene& scene, const Hierarchy& h, ElementId id, s
             problem = "cluster " + std::to_string(id) + ": sample weights";
         for (int k = 0; k < shape.sampleCount; ++k) {
             const ClusterShape::Sample& q = shape.samples[k];
-            if (glm::dot(q.normal(), scene.polygons[q.polygon].normal()) < 1.0 - 1e-8)
+            const Polygon& on = scene.polygons[q.polygon];
+            if (glm::dot(q.normal(), on.normal()) < 1.0 - 1e-8)
                 problem = "cluster " + std::to_string(id) + ": sample normal";
+            // Its position, relative to the cluster's centre, on the polygon's
+            // plane (within the float rounding of the file's coordinates: a
+            // quad read from float32 is planar to about 1e-7 of them).
+            const glm::dvec3 p = e.center + glm::dvec3(q.p);
+            const double size = glm::length(h.box(id).extent());
+            const double magnitude = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+            if (std::abs(glm::dot(on.normal(), p - on.vertices[0])) > 1e-6 * size + 1e-7 * magnitude)
+                problem = "cluster " + std::to_string(id) + ": sample off its polygon";
         }
     }
     return count;
