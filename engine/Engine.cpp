@@ -1217,7 +1217,7 @@ MeshSnapshot Engine::snapshot(SnapshotOverlays overlays) const {
     auto add = [&](const std::vector<std::array<glm::dvec3, 2>>& segments, const glm::vec3& color, std::size_t stride) {
         for (std::size_t i = 0; i < segments.size(); i += stride)
             for (const glm::dvec3& p : segments[i]) {
-                mesh.linePositions.emplace_back(p);
+                mesh.linePositions.emplace_back(p - mesh.origin);
                 mesh.lineColors.push_back(color);
             }
     };

@@ -80,7 +80,7 @@ void renderToFile(const Scene& scene, const MeshSnapshot& mesh, const ImageReque
         // Exposure is the shader's (a push constant), for PNG only: PFM holds B.
         MeshDrawOptions options;
         options.exposure = lowerExtension(request.path) == ".png" ? request.exposure : 0.0;
-        image = renderer.render(mesh, view.viewProjectionF(), size.width, size.height, options);
+        image = renderer.render(mesh, view.viewProjection(), size.width, size.height, options);
     }
     if (const std::size_t messages = *validationMessages; messages > 0)
         throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(messages) +

@@ -14,9 +14,9 @@ struct CameraView {
     double znear = 0.01;
     double zfar = 100.0;
 
+    // Double precision: MeshRenderer moves it to a snapshot's origin before
+    // it goes to the GPU in float.
     glm::dmat4 viewProjection() const { return projection * view; }
-    // Single precision, for push constants.
-    glm::mat4 viewProjectionF() const { return glm::mat4(viewProjection()); }
 };
 
 // A camera looking at the centre of bounds from the +Z side and a little above,

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "render/VulkanContext.h"
 #include "radiosity/Scene.h"
 #include "radiosity/Snapshot.h"
@@ -121,6 +123,7 @@ GpuMesh::GpuMesh(const VulkanContext& context, const MeshSnapshot& snapshot) {
     indices_ = uploadArray(context, snapshot.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     lines_ = uploadArray(context, lines, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     indexCount_ = static_cast<std::uint32_t>(snapshot.indices.size());
+    origin_ = snapshot.origin;
     lineVertexCount_ = static_cast<std::uint32_t>(lines.size());
 }
 
@@ -259,7 +262,7 @@ UniquePipeline MeshRenderer::createPipeline(VkDevice device, VkRenderPass render
 }
 
 void MeshRenderer::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const GpuTextures& textures,
-                        const glm::mat4& viewProjection, VkExtent2D extent,
+                        const glm::dmat4& viewProjection, VkExtent2D extent,
                         const MeshDrawOptions& options) const {
     // Positive height: the projection already flips y (see CameraView), so
     // row 0 of the attachment is the top of the picture.
@@ -269,7 +272,9 @@ void MeshRenderer::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const GpuTextu
     const VkRect2D scissor{{0, 0}, extent};
     const VkDeviceSize offset = 0;
     // exp2 in double, as the CLI's CPU scaling of PNGs does: the same float.
-    DrawPushConstants push{viewProjection, static_cast<float>(std::exp2(options.exposure))};
+    // The vertices are relative to the mesh's origin: moved there in double.
+    const glm::mat4 fromOrigin(viewProjection * glm::translate(glm::dmat4(1.0), mesh.origin()));
+    DrawPushConstants push{fromOrigin, static_cast<float>(std::exp2(options.exposure))};
     // Both pipelines share the layout, so the set bound once serves both (the
     // lines' shader declares the sampler too, and must find it bound).
     const bool drawSurfaces = options.surfaces && mesh.indexCount() > 0;

@@ -7,6 +7,9 @@
 //   MeshRenderer renderer(context, renderPass);          // once per render pass
 //   ... vkCmdBeginRenderPass(cmd, ...);
 //   renderer.draw(cmd, mesh, textures, viewProjection, extent, options);  // surfaces, then lines
+// viewProjection is in double and maps world coordinates: the draw moves it to
+// the snapshot's origin (MeshSnapshot::origin) before it goes to the GPU in
+// float, so a scene far from the world's origin keeps its detail.
 //   ... vkCmdEndRenderPass(cmd);
 //
 // The textures are an argument of each draw, not state of the renderer: the
@@ -64,6 +67,7 @@ class GpuMesh {
     VkBuffer vertexBuffer() const { return vertices_.buffer(); }
     VkBuffer indexBuffer() const { return indices_.buffer(); }
     VkBuffer lineBuffer() const { return lines_.buffer(); }
+    const glm::dvec3& origin() const { return origin_; }  // MeshSnapshot::origin
 
   private:
     GpuBuffer vertices_;
@@ -71,6 +75,7 @@ class GpuMesh {
     GpuBuffer lines_;
     std::uint32_t indexCount_ = 0;
     std::uint32_t lineVertexCount_ = 0;
+    glm::dvec3 origin_{0.0};
 };
 
 struct MeshDrawOptions {
@@ -98,10 +103,10 @@ class MeshRenderer {
 
     // Records into cmd, inside the render pass. Sets viewport and scissor to
     // the whole extent and binds textures' descriptor set. viewProjection
-    // maps world to Vulkan clip space. textures: built from the snapshot's
+    // maps world to Vulkan clip space (the mesh's origin is folded in here). textures: built from the snapshot's
     // textures (a mesh without textured vertices may use any GpuTextures).
     void draw(VkCommandBuffer cmd, const GpuMesh& mesh, const GpuTextures& textures,
-              const glm::mat4& viewProjection, VkExtent2D extent,
+              const glm::dmat4& viewProjection, VkExtent2D extent,
               const MeshDrawOptions& options = {}) const;
 
   private:

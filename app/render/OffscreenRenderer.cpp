@@ -64,7 +64,7 @@ OffscreenRenderer::OffscreenRenderer(const VulkanContext& context, ShaderOutput 
     commandBuffer_ = commandPool_.allocate();
 }
 
-Image OffscreenRenderer::render(const MeshSnapshot& snapshot, const glm::mat4& viewProjection,
+Image OffscreenRenderer::render(const MeshSnapshot& snapshot, const glm::dmat4& viewProjection,
                                 int width, int height, const MeshDrawOptions& options) {
     const GpuMesh mesh(context_, snapshot);
     if (!textures_ || !textures_->sameSources(snapshot.textures)) {
@@ -75,7 +75,7 @@ Image OffscreenRenderer::render(const MeshSnapshot& snapshot, const glm::mat4& v
 }
 
 Image OffscreenRenderer::render(const GpuMesh& mesh, const GpuTextures& textures,
-                                const glm::mat4& viewProjection, int width, int height,
+                                const glm::dmat4& viewProjection, int width, int height,
                                 const MeshDrawOptions& options) {
     // Set up: attachments of this size (the fence wait of the previous
     // render() means the old ones are idle).

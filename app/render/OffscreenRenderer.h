@@ -39,11 +39,11 @@ class OffscreenRenderer {
 
     // Linear RGB (times 2^options.exposure), top row first, background 0.
     // width and height >= 1, at most the device's maxImageDimension2D.
-    Image render(const MeshSnapshot& snapshot, const glm::mat4& viewProjection, int width,
+    Image render(const MeshSnapshot& snapshot, const glm::dmat4& viewProjection, int width,
                  int height, const MeshDrawOptions& options = {});
     // What the caller has uploaded already (the viewer's screenshot of the
     // mesh on screen).
-    Image render(const GpuMesh& mesh, const GpuTextures& textures, const glm::mat4& viewProjection,
+    Image render(const GpuMesh& mesh, const GpuTextures& textures, const glm::dmat4& viewProjection,
                  int width, int height, const MeshDrawOptions& options = {});
 
     VkRenderPass renderPass() const { return renderPass_.get(); }

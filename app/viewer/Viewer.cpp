@@ -653,7 +653,7 @@ int runViewer(const ViewerOptions& options) {
                 try {
                     if (!offscreen) offscreen.emplace(*context);
                     // The mesh on screen, as on screen: exposure included.
-                    const Image image = offscreen->render(*gpuScene->mesh, *gpuScene->textures, view.viewProjectionF(),
+                    const Image image = offscreen->render(*gpuScene->mesh, *gpuScene->textures, view.viewProjection(),
                                                           std::max(fbw, 1), std::max(fbh, 1), drawOptions);
                     const std::string path = freeOutputPath(options.scene, "-screenshot", ".png");
                     writeImage(image, path);
@@ -687,7 +687,7 @@ int runViewer(const ViewerOptions& options) {
             }
             if (VkCommandBuffer cmd = windowRenderer.beginFrame({0.02f, 0.02f, 0.025f, 1.0f})) {
                 if (gpuScene)
-                    meshRenderer.draw(cmd, *gpuScene->mesh, *gpuScene->textures, view.viewProjectionF(),
+                    meshRenderer.draw(cmd, *gpuScene->mesh, *gpuScene->textures, view.viewProjection(),
                                       windowRenderer.extent(), drawOptions);
                 ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
                 const std::uint64_t serial = windowRenderer.endFrame(gpuScene, capture);

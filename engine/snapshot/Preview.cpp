@@ -5,13 +5,14 @@ namespace rad {
 
 MeshSnapshot makePreviewSnapshot(const Scene& scene) {
     MeshSnapshot mesh;
+    mesh.origin = displayOrigin(scene.bounds());
     for (const Polygon& p : scene.polygons) {
         const Material& m = scene.materials[p.material];
         const glm::vec3 color(m.reflectance + m.emission);
         const glm::vec3 normal(p.normal());
         const auto base = static_cast<std::uint32_t>(mesh.positions.size());
         for (int i = 0; i < p.vertexCount; ++i) {
-            mesh.positions.emplace_back(p.vertices[i]);
+            mesh.positions.emplace_back(p.vertices[i] - mesh.origin);
             mesh.normals.push_back(normal);
             mesh.colors.push_back(color);
         }

@@ -74,7 +74,8 @@ void triangulateOutline(std::vector<std::uint32_t>& ring, const std::vector<Vert
 
 // Sorted vectors, not hash maps: a polygon has a few vertices on average,
 // and building a map per polygon per frame was most of the snapshot.
-void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, SnapshotCache::Part& part, Scratch& scratch) {
+void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, const glm::dvec3& origin, SnapshotCache::Part& part,
+                Scratch& scratch) {
     MeshSnapshot& mesh = part.mesh;
     std::vector<double>& weights = part.weights;
     std::vector<std::uint32_t>& outline = part.outline;
@@ -165,7 +166,7 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, SnapshotC
         const LatticePoint& q = v.p;
         if (q.i == 0 || q.j == 0 || (triangle ? q.i + q.j == size : (q.i == size || q.j == size)))
             outline.push_back(static_cast<std::uint32_t>(mesh.positions.size()));
-        mesh.positions.emplace_back(v.position);
+        mesh.positions.emplace_back(v.position - origin);
         mesh.normals.push_back(normal);
         mesh.colors.emplace_back(v.value);
         weights.push_back(v.weight);
@@ -210,7 +211,8 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, SnapshotC
 // keys (on all cores), not by a hash map.
 using Key = SnapshotCache::Key;
 
-// The smoothing's grid: a millionth of the scene's diagonal.
+// The smoothing's grid: a millionth of the scene's diagonal. `origin` is the
+// grid's, relative to the mesh's own (MeshSnapshot::origin).
 double keyCellOf(const Aabb& box) { return std::max(1e-300, 1e-6 * glm::length(box.extent())); }
 
 // A vertex's position on that grid (0 to a million cells along the box, 22
@@ -274,7 +276,7 @@ void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vec
     std::vector<std::pair<Key, std::uint32_t>>& keyed = cache.keyed;
     keyed.resize(n);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
-        keyed[k] = {vertexKey(mesh, outline[k], cache.keyOrigin, cache.keyCell), outline[k]};
+        keyed[k] = {vertexKey(mesh, outline[k], cache.keyOrigin - mesh.origin, cache.keyCell), outline[k]};
     });
     tbb::parallel_sort(keyed.begin(), keyed.end());
     // Groups are disjoint: each is summed before any of it is written.
@@ -536,7 +538,7 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
         const std::size_t p = changed[c];
         for (std::uint32_t local : cache.parts[p].outline) {
             const auto v = static_cast<std::uint32_t>(cache.vertexAt[p] + local);
-            fresh.push_back({vertexKey(mesh, v, cache.keyOrigin, cache.keyCell), v});
+            fresh.push_back({vertexKey(mesh, v, cache.keyOrigin - mesh.origin, cache.keyCell), v});
         }
     }
     if (!fresh.empty()) {
@@ -569,6 +571,17 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
 
 }  // namespace
 
+glm::dvec3 displayOrigin(const Aabb& bounds) {
+    if (bounds.empty()) return glm::dvec3(0.0);
+    const glm::dvec3 e = bounds.extent();
+    const double size = std::max({e.x, e.y, e.z});
+    if (!(size > 0.0) || !std::isfinite(size)) return glm::dvec3(0.0);
+    // Twice the power of two: a box that holds the origin has its centre
+    // within a quarter of a cell of it, and rounds to 0.
+    const double cell = 2.0 * std::exp2(std::ceil(std::log2(size)));
+    return glm::round(bounds.center() / cell) * cell;
+}
+
 MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy) {
     MeshSnapshot mesh;
     SnapshotCache cache;
@@ -583,6 +596,13 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     // signature is unchanged keeps its part. The parts are joined in polygon
     // order (the same mesh as one core makes from scratch).
     const std::size_t polygons = scene.polygons.size();
+    // Parts keep positions relative to the origin they were made with: a
+    // new one (the scene's bounds moved to another cell) meshes them all.
+    mesh.origin = displayOrigin(scene.bounds());
+    if (mesh.origin != cache.origin) {
+        cache = SnapshotCache{};
+        cache.origin = mesh.origin;
+    }
     cache.parts.resize(polygons);
     std::vector<std::uint8_t> remeshed(polygons, 0);
     std::atomic<std::size_t> meshed{0}, left{0};
@@ -637,7 +657,7 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
             part.mesh.indices.clear();
             part.weights.clear();
             part.outline.clear();
-            if (top != kNone) addPolygon(scene, hierarchy, top, part, scratch);
+            if (top != kNone) addPolygon(scene, hierarchy, top, mesh.origin, part, scratch);
             part.shape = shape;
             part.light = light;
             part.valid = true;

@@ -24,7 +24,7 @@ namespace rad {
 namespace {
 
 const glm::vec3 kRed(1, 0, 0), kGreen(0, 1, 0), kBlue(0, 0, 1), kYellow(1, 1, 0);
-const glm::mat4 kIdentity(1.0f);
+const glm::dmat4 kIdentity(1.0);
 
 void addTriangle(MeshSnapshot& mesh, std::array<glm::vec3, 3> p, std::array<glm::vec3, 3> c) {
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
@@ -134,7 +134,7 @@ TEST_F(OffscreenRendererTest, OneSidedPanelSeenFromBehindIsNotDrawn) {
     Aabb bounds;
     bounds.lo = glm::dvec3(-2, -2, -3);
     bounds.hi = glm::dvec3(2, 2, 0);
-    const glm::mat4 viewProjection = makeCameraView(camera, bounds, 1.0).viewProjectionF();
+    const glm::dmat4 viewProjection = makeCameraView(camera, bounds, 1.0).viewProjection();
     // Facing +Z (toward the camera): counter-clockwise seen from +Z.
     const std::array<glm::vec3, 4> facing{{{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}}};
     const std::array<glm::vec3, 4> away{{facing[0], facing[3], facing[2], facing[1]}};
@@ -147,6 +147,40 @@ TEST_F(OffscreenRendererTest, OneSidedPanelSeenFromBehindIsNotDrawn) {
         SCOPED_TRACE(turned ? "turned away" : "facing the camera");
         expectColor(image, 16, 16, turned ? kBlue : kRed);
     }
+}
+
+// A snapshot far from the world's origin keeps its positions relative to its
+// own (MeshSnapshot::origin), and the renderer adds it back in double: 1000
+// km out, a red panel 1 cm in front of a blue one is drawn as at the origin
+// (in world floats both would round to the same 6 cm grid and fight).
+TEST_F(OffscreenRendererTest, FarFromTheOriginDrawsAsAtIt) {
+    const auto addQuad = [](MeshSnapshot& mesh, double z, double half, glm::vec3 color) {
+        const std::array<glm::vec3, 4> q{{{-half, -half, z}, {half, -half, z}, {half, half, z}, {-half, half, z}}};
+        addTriangle(mesh, {{q[0], q[1], q[2]}}, {color, color, color});
+        addTriangle(mesh, {{q[0], q[2], q[3]}}, {color, color, color});
+    };
+    std::vector<Image> images;
+    for (double distance : {0.0, 1e6}) {
+        const glm::dvec3 origin(distance, 0.5 * distance, -distance);
+        Camera camera;  // looking down -Z, +Y up, 1 m in front of the panels
+        camera.position = origin + glm::dvec3(0.0, 0.0, 1.0);
+        camera.yfov = 1.0;
+        Aabb bounds;
+        bounds.lo = origin + glm::dvec3(-1, -1, -0.1);
+        bounds.hi = origin + glm::dvec3(1, 1, 1);
+        MeshSnapshot mesh;
+        mesh.origin = origin;
+        addQuad(mesh, 0.0, 0.2, kRed);
+        addQuad(mesh, -0.01, 0.5, kBlue);
+        images.push_back(renderer_->render(mesh, makeCameraView(camera, bounds, 1.0).viewProjection(), 32, 32));
+        SCOPED_TRACE(distance);
+        expectColor(images.back(), 16, 16, kRed);
+        expectColor(images.back(), 3, 16, kBlue);
+    }
+    // The matrices differ in their last bits: an edge pixel may differ.
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < images[0].rgb.size(); ++i) differ += std::abs(images[0].rgb[i] - images[1].rgb[i]) > 1e-4f;
+    EXPECT_LE(differ, images[0].rgb.size() / 100);
 }
 
 TEST_F(OffscreenRendererTest, TopOfClipSpaceIsFirstRow) {

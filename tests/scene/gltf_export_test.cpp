@@ -118,6 +118,26 @@ TEST(GltfExport, GltfRoundTripKeepsPositionsAndColours) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir / ""), fs::directory_iterator()), 1);
 }
 
+// A snapshot far from the world's origin has positions relative to its own
+// (MeshSnapshot::origin): the file keeps them and puts the origin, a double
+// in the JSON, in the node's translation. A snapshot at the origin has none.
+TEST(GltfExport, TheSnapshotsOriginIsTheNodesTranslation) {
+    TempDir dir;
+    for (const glm::dvec3 origin : {glm::dvec3(0.0), glm::dvec3(1e6 + 0.125, 5e5, -1e6)}) {
+        MeshSnapshot mesh = sampleMesh();
+        mesh.origin = origin;
+        const fs::path file = dir / "out.gltf";
+        exportGltf(mesh, file.string());
+        expectSameMesh(mesh, file);
+        const std::vector<double> translation = readBack(file).nodes.at(0).translation;
+        if (origin == glm::dvec3(0.0)) {
+            EXPECT_TRUE(translation.empty());
+        } else {
+            EXPECT_EQ(translation, (std::vector<double>{origin.x, origin.y, origin.z}));
+        }
+    }
+}
+
 TEST(GltfExport, OverwritesAnExistingFile) {
     TempDir dir;
     const fs::path file = dir / "out.glb";

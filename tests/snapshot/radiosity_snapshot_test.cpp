@@ -181,31 +181,40 @@ TEST(RadiositySnapshot, CachedTilesAcrossResizesAndAStopGiveTheMeshMadeFromScrat
 // Two tiles of one wall that meet edge to edge: the vertices on the shared
 // edge show the area-weighted mean of both sides, the same in both tiles'
 // meshes, so the tiling does not show; a vertex inside a tile keeps its own.
+// The same 1000 km from the world's origin: the mesh's positions are
+// relative to its origin (in world floats they would round to 6 cm, and the
+// tile's inner vertex onto its edge).
 TEST(RadiositySnapshot, TilesMeetingEdgeToEdgeShareTheirEdgeValues) {
     using V = glm::dvec3;
-    Scene s;
-    const auto m = test::addMaterial(s, V(0.5), V(0.0));
-    test::addQuadObject(s, "left", m, {{V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)}});
-    test::addQuadObject(s, "right", m, {{V(1, 0, 0), V(2, 0, 0), V(2, 1, 0), V(1, 1, 0)}});
-    Hierarchy h(s, 1e-3);
-    const ElementId left = h.polygonElement(0), right = h.polygonElement(1);
-    h.subdivide(left);  // the left tile has an interior vertex at (0.5, 0.5)
-    for (ElementId c : h[left].children) h[c].radiosity = V(1.0);
-    h[right].radiosity = V(3.0);
-    const MeshSnapshot mesh = makeRadiositySnapshot(s, h);
-    int shared = 0;
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-        const glm::dvec3 p(mesh.positions[i]);
-        if (std::abs(p.x - 1.0) < 1e-9 && (std::abs(p.y) < 1e-9 || std::abs(p.y - 1.0) < 1e-9)) {
-            // Left: one child of area 1/4 at a corner; right: the whole tile, area 1.
-            EXPECT_NEAR(mesh.colors[i].x, (0.25 * 1.0 + 1.0 * 3.0) / 1.25, 1e-5) << p.x << "," << p.y;
-            ++shared;
+    for (const V offset : {V(0.0), V(1e6, 5e5, -1e6)}) {
+        SCOPED_TRACE(offset.x);
+        Scene s;
+        const auto m = test::addMaterial(s, V(0.5), V(0.0));
+        test::addQuadObject(s, "left", m, {{offset + V(0, 0, 0), offset + V(1, 0, 0), offset + V(1, 1, 0), offset + V(0, 1, 0)}});
+        test::addQuadObject(s, "right", m, {{offset + V(1, 0, 0), offset + V(2, 0, 0), offset + V(2, 1, 0), offset + V(1, 1, 0)}});
+        Hierarchy h(s, 1e-3);
+        const ElementId left = h.polygonElement(0), right = h.polygonElement(1);
+        h.subdivide(left);  // the left tile has an interior vertex at (0.5, 0.5)
+        for (ElementId c : h[left].children) h[c].radiosity = V(1.0);
+        h[right].radiosity = V(3.0);
+        const MeshSnapshot mesh = makeRadiositySnapshot(s, h);
+        EXPECT_EQ(mesh.origin == V(0.0), offset == V(0.0));
+        int shared = 0, inner = 0;
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+            const glm::dvec3 p = mesh.origin + glm::dvec3(mesh.positions[i]) - offset;
+            if (std::abs(p.x - 1.0) < 1e-6 && (std::abs(p.y) < 1e-6 || std::abs(p.y - 1.0) < 1e-6)) {
+                // Left: one child of area 1/4 at a corner; right: the whole tile, area 1.
+                EXPECT_NEAR(mesh.colors[i].x, (0.25 * 1.0 + 1.0 * 3.0) / 1.25, 1e-5) << p.x << "," << p.y;
+                ++shared;
+            }
+            if (glm::length(p - V(0.5, 0.5, 0.0)) < 1e-6) {
+                EXPECT_NEAR(mesh.colors[i].x, 1.0, 1e-6);
+                ++inner;
+            }
         }
-        if (glm::length(p - V(0.5, 0.5, 0.0)) < 1e-9) {
-            EXPECT_NEAR(mesh.colors[i].x, 1.0, 1e-6);
-        }
+        EXPECT_EQ(shared, 4) << "both corners of the shared edge, once in each tile";
+        EXPECT_EQ(inner, 1);
     }
-    EXPECT_EQ(shared, 4) << "both corners of the shared edge, once in each tile";
 }
 
 }  // namespace

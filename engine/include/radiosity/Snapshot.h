@@ -17,6 +17,12 @@ namespace rad {
 struct Texture;
 
 struct MeshSnapshot {
+    // positions and linePositions are relative to this point (world
+    // coordinates, double precision): a float is 6 cm coarse 1000 km from
+    // the world's origin, and as fine as the scene is small near its own.
+    // Renderers add it back in double (MeshRenderer folds it into the
+    // view-projection). 0 for a scene around the origin (displayOrigin).
+    glm::dvec3 origin{0.0};
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec3> colors;  // linear RGB, same units as B
@@ -53,6 +59,13 @@ struct SnapshotOverlays {
 };
 
 struct Scene;
+struct Aabb;
+
+// The origin of a scene's snapshots: the centre of its bounds rounded to a
+// multiple of twice the power of two at or above its largest extent, so
+// that a scene whose bounds hold the world's origin keeps 0, and moves
+// within a scene seldom change it.
+glm::dvec3 displayOrigin(const Aabb& bounds);
 
 // Material-preview colours (reflectance + emission) per polygon, flat.
 MeshSnapshot makePreviewSnapshot(const Scene& scene);
