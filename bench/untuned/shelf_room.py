@@ -6,40 +6,13 @@ same room far from the world's origin, as georeferenced building models are.
 
     python3 bench/untuned/shelf_room.py OUT.gltf [--offset D]
 """
-import base64
 import json
 import math
-import struct
+import random
 import sys
-pos=[]; idx=[]; meshes=[]; accessors=[]; views=[]
-blob=bytearray()
-def add_mesh(name, tris_quads, material):
-    # tris_quads: list of polygons (3 or 4 verts); emitted as indexed triangles
-    v=[]; ind=[]
-    for poly in tris_quads:
-        base=len(v); v.extend(poly)
-        for k in range(1,len(poly)-1): ind += [base, base+k, base+k+1]
-    global blob
-    while len(blob)%4: blob.append(0)
-    vo=len(blob); 
-    for p in v: blob += struct.pack('<3f',*p)
-    vl=len(blob)-vo
-    while len(blob)%4: blob.append(0)
-    io=len(blob)
-    for i in ind: blob += struct.pack('<H',i)
-    il=len(blob)-io
-    views.append({"buffer":0,"byteOffset":vo,"byteLength":vl,"target":34962})
-    mn=[min(p[c] for p in v) for c in range(3)]; mx=[max(p[c] for p in v) for c in range(3)]
-    accessors.append({"bufferView":len(views)-1,"componentType":5126,"count":len(v),"type":"VEC3","min":mn,"max":mx})
-    views.append({"buffer":0,"byteOffset":io,"byteLength":il,"target":34963})
-    accessors.append({"bufferView":len(views)-1,"componentType":5123,"count":len(ind),"type":"SCALAR"})
-    meshes.append({"name":name,"primitives":[{"attributes":{"POSITION":len(accessors)-2},"indices":len(accessors)-1,"material":material}]})
-    return len(meshes)-1
-def box(x0,y0,z0,x1,y1,z1,inward=False):
-    f=[[(x0,y0,z0),(x0,y0,z1),(x0,y1,z1),(x0,y1,z0)],[(x1,y0,z0),(x1,y1,z0),(x1,y1,z1),(x1,y0,z1)],
-       [(x0,y0,z0),(x1,y0,z0),(x1,y0,z1),(x0,y0,z1)],[(x0,y1,z0),(x0,y1,z1),(x1,y1,z1),(x1,y1,z0)],
-       [(x0,y0,z0),(x0,y1,z0),(x1,y1,z0),(x1,y0,z0)],[(x0,y0,z1),(x1,y0,z1),(x1,y1,z1),(x0,y1,z1)]]
-    return [list(reversed(q)) for q in f] if inward else f
+
+from gltf_writer import accessors, add_mesh, box, buffers, meshes, views
+
 materials=[
  {"name":"plaster","pbrMetallicRoughness":{"baseColorFactor":[0.8,0.78,0.74,1]}},
  {"name":"wood","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.35,0.2,1]}},
@@ -65,7 +38,6 @@ sh+=box(1.2,0,0,1.22,2.0,0.3)
 for k in range(6): sh+=box(0.02,k*0.38,0,1.2,k*0.38+0.02,0.3)
 shelf=add_mesh("shelf", sh, 1)
 books=[]
-import random
 random.seed(3)
 for k in range(5):
     x=0.04
@@ -90,7 +62,7 @@ nodes=[
 ]
 g={"asset":{"version":"2.0","generator":"untuned-u5"},"scene":0,"scenes":[{"nodes":list(range(len(nodes)))}],
  "nodes":nodes,"meshes":meshes,"materials":materials,"accessors":accessors,"bufferViews":views,
- "buffers":[{"byteLength":len(blob),"uri":"data:application/octet-stream;base64,"+base64.b64encode(bytes(blob)).decode()}],
+ "buffers":buffers(),
  "cameras":[{"type":"perspective","perspective":{"yfov":1.0,"aspectRatio":1.5,"znear":0.05}}],
  "extensionsUsed":["KHR_lights_punctual"],
  "extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","color":[1,0.9,0.75],"intensity":3},{"type":"point","color":[1,0.95,0.9],"intensity":5}]}}}
