@@ -100,15 +100,26 @@ double emittedPower(const Scene& scene) { return emittedPowerAfter(scene, {}); }
 
 // The share of the thresholds' references (emitted power, area) a point's
 // surroundings make up (refine/Surroundings.h), measured with the scene's
-// own rays before the hierarchy is built.
-double localThresholdScale(const Scene& scene, const EngineSettings& settings) {
-    if (!settings.localThresholds || scene.polygons.empty()) return 1.0;
+// own rays before the hierarchy is built: the scene's, and in an open scene
+// each object's for its area threshold.
+ThresholdScales localThresholdScales(const Scene& scene, const EngineSettings& settings) {
+    if (!settings.localThresholds || scene.polygons.empty()) return {};
     RayCaster rays;
     rays.setFrame(scene.bounds());
     std::vector<std::uint32_t> all(scene.polygons.size());
     std::iota(all.begin(), all.end(), 0u);
     rays.setLayer(Layer::Static, scene, all);
-    return thresholdScale(measureSurroundings(scene, rays));
+    return measureThresholdScales(scene, rays);
+}
+
+// The default area threshold, 2e-5 of the scene's polygon area, scaled.
+double defaultMinArea(const Scene& scene, double scale) { return 2e-5 * scale * totalArea(scene); }
+
+std::vector<double> objectMinAreas(const Scene& scene, const EngineSettings& settings, const ThresholdScales& scales) {
+    if (settings.minArea > 0.0 || scales.objectArea.empty()) return {};
+    std::vector<double> out(scales.objectArea.size());
+    for (std::size_t o = 0; o < out.size(); ++o) out[o] = defaultMinArea(scene, scales.objectArea[o]);
+    return out;
 }
 
 Scene checkedScene(Scene scene) {
@@ -124,8 +135,10 @@ struct Engine::State {
     State(Scene s, const EngineSettings& settings)
         : scene(checkedScene(std::move(s))),
           settings(settings),
-          scale(localThresholdScale(scene, settings)),
-          hierarchy(scene, settings.minArea > 0.0 ? settings.minArea : 2e-5 * scale * totalArea(scene)),
+          scales(localThresholdScales(scene, settings)),
+          scale(scales.scene),
+          hierarchy(scene, settings.minArea > 0.0 ? settings.minArea : defaultMinArea(scene, scale),
+                    objectMinAreas(scene, settings, scales)),
           refiner(hierarchy, links, rays,
                   RefineSettings{settings.epsilon, scale * emittedPower(scene), settings.samplesPerElement,
                                  settings.maxMemoryBytes > 0 ? settings.maxMemoryBytes : defaultMemoryLimit()}),
@@ -161,7 +174,8 @@ struct Engine::State {
 
     Scene scene;
     EngineSettings settings;
-    double scale;  // localThresholdScale
+    ThresholdScales scales;
+    double scale;  // the scene's: scales.scene
     Hierarchy hierarchy;
     LinkStore links;
     RayCaster rays;
@@ -327,7 +341,10 @@ Engine::Engine(Scene scene, const EngineSettings& settings) {
     s.solver.setEnergyGuard(settings.energyGuard);
     s.chooseDynamic(dynamicObject);
     s.stats.polygons = s.scene.polygons.size();
-    s.stats.minArea = s.hierarchy.minArea();
+    s.stats.minArea = s.stats.minAreaSmallest = s.hierarchy.minArea();
+    for (std::uint32_t o = 0; o < s.scene.objects.size(); ++o)
+        if (s.scene.objects[o].polygonCount > 0)
+            s.stats.minAreaSmallest = std::min(s.stats.minAreaSmallest, s.hierarchy.minArea(o));
     s.stats.thresholdScale = s.scale;
     s.stats.hierarchySeconds = secondsSince(start);
 }

@@ -47,6 +47,7 @@ Report makeReport(const SolveSettings& s, const Engine& engine, const ImportNote
         {"scene", s.scene},
         {"epsilon", s.engine.epsilon},
         {"min_area", st.minArea},
+        {"min_area_smallest", st.minAreaSmallest},
         {"threshold_scale", st.thresholdScale},
         {"polygons", st.polygons},
         {"elements", st.elements},

@@ -1,7 +1,12 @@
 #!/usr/bin/env python3
 """Block-RMS difference between an image and a Cycles reference (standard library only).
 
-    python3 bench/cycles/compare.py IMAGE.pfm REFERENCE.pfm REFERENCE-lights.pfm
+    python3 bench/cycles/compare.py IMAGE.pfm REFERENCE.pfm REFERENCE-lights.pfm [--exclude X0,Y0,X1,Y1]
+
+REFERENCE-lights.pfm may be "-": no pixel sees a light. --exclude leaves out the pixels with
+X0 <= x < X1 and Y0 <= y < Y1 (rows from the top) as light pixels are, for a comparison between
+two of our own images where one small region (a lamp's hot spot) would say nothing but how each
+was meshed.
 
 The same metric as tests/support/ImageCompare.cpp (keep the two in step):
 - luminance Y = 0.2126 R + 0.7152 G + 0.0722 B (Rec. 709, linear);
@@ -39,14 +44,19 @@ def read_pfm(path):
     return w, h, rows
 
 
-def block_rms(ours, reference, lights):
+def block_rms(ours, reference, lights, exclude=None):
     w, h, a = ours
     w2, h2, b = reference
-    w3, h3, m = lights
+    w3, h3, m = lights if lights is not None else (w, h, [[0.0] * w for _ in range(h)])
     if (w, h) != (w2, h2) or (w, h) != (w3, h3):
         raise SystemExit('image sizes differ')
     keep = [[all(not (m[yy][xx] > 0.0) for yy in range(max(0, y - 1), min(h, y + 2))
                  for xx in range(max(0, x - 1), min(w, x + 2))) for x in range(w)] for y in range(h)]
+    if exclude:
+        x0, y0, x1, y1 = exclude
+        for y in range(max(0, y0), min(h, y1)):
+            for x in range(max(0, x0), min(w, x1)):
+                keep[y][x] = False
     sq, blocks, sum_a, sum_b, n = 0.0, 0, 0.0, 0.0, 0
     for by in range(0, h, BLOCK):
         for bx in range(0, w, BLOCK):
@@ -67,9 +77,20 @@ def block_rms(ours, reference, lights):
 
 
 def main():
-    if len(sys.argv) != 4:
+    args = sys.argv[1:]
+    exclude = None
+    if len(args) == 5 and args[3] == '--exclude':
+        try:
+            exclude = [int(v) for v in args[4].split(',')]
+        except ValueError:
+            exclude = []
+        if len(exclude) != 4:
+            raise SystemExit('--exclude: expected X0,Y0,X1,Y1 (four integers), got ' + args[4])
+        args = args[:3]
+    if len(args) != 3:
         raise SystemExit(__doc__)
-    print(json.dumps(block_rms(read_pfm(sys.argv[1]), read_pfm(sys.argv[2]), read_pfm(sys.argv[3]))))
+    lights = None if args[2] == '-' else read_pfm(args[2])
+    print(json.dumps(block_rms(read_pfm(args[0]), read_pfm(args[1]), lights, exclude)))
 
 
 if __name__ == '__main__':

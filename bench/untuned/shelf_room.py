@@ -2,9 +2,10 @@
 a point light 1.5 cm from a wall (a sconce), the other inside an open lampshade of 16 sides whose
 material is doubleSided; a bookcase with rows of books 4 mm apart against a wall; a cabinet marked
 dynamic; a table on four legs. With --offset D, every node is moved by (D, D/2, -D) metres: the
-same room far from the world's origin, as georeferenced building models are.
+same room far from the world's origin, as georeferenced building models are. With --site, it stands
+on a ground plane 1 km wide, 1 cm under its floor.
 
-    python3 bench/untuned/shelf_room.py OUT.gltf [--offset D]
+    python3 bench/untuned/shelf_room.py OUT.gltf [--offset D] [--site]
 """
 import json
 import math
@@ -48,6 +49,7 @@ for k in range(5):
 bookm=add_mesh("books", books, 3)
 cab=add_mesh("cabinet", box(-0.3,0,-0.25,0.3,0.9,0.25), 1)
 table=add_mesh("table", box(-0.6,0.72,-0.4,0.6,0.75,0.4)+box(-0.55,0,-0.35,-0.5,0.72,-0.3)+box(0.5,0,-0.35,0.55,0.72,-0.3)+box(-0.55,0,0.3,-0.5,0.72,0.35)+box(0.5,0,0.3,0.55,0.72,0.35), 1)
+site=add_mesh("ground", [[(-500,-0.01,-500),(-500,-0.01,500),(500,-0.01,500),(500,-0.01,-500)]], 4) if '--site' in sys.argv else None
 nodes=[
  {"name":"room","mesh":room},
  {"name":"floor","mesh":floor},
@@ -60,6 +62,7 @@ nodes=[
  {"name":"floor-lamp","extensions":{"KHR_lights_punctual":{"light":1}},"translation":[3.4,1.55,3.0]},
  {"name":"camera","camera":0,"translation":[3.7,1.6,0.3],"rotation":[-0.05,0.94,0.15,0.3]},
 ]
+if site is not None: nodes.append({"name":"ground","mesh":site})
 g={"asset":{"version":"2.0","generator":"untuned-u5"},"scene":0,"scenes":[{"nodes":list(range(len(nodes)))}],
  "nodes":nodes,"meshes":meshes,"materials":materials,"accessors":accessors,"bufferViews":views,
  "buffers":buffers(),

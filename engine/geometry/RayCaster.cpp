@@ -173,6 +173,9 @@ struct RayCaster::Impl {
     glm::dvec3 origin{0.0};
     double scale = 1.0;
     double size = 1.0;  // the frame's largest extent
+    // Per scene polygon given to a layer: the diagonal of its box, the scale
+    // of coincidence at a segment's end on it (0: not given).
+    std::vector<double> extent;
     glm::vec3 toEmbree(const glm::dvec3& p) const { return glm::vec3((p - origin) * scale); }
 
     Impl() {
@@ -215,6 +218,10 @@ struct RayCaster::Impl {
                                         std::to_string(scene.polygons.size()));
             const Polygon& p = scene.polygons[id];
             if (p.vertexCount < 3 || p.vertexCount > 4) continue;
+            Aabb box;
+            for (int k = 0; k < p.vertexCount; ++k) box.extend(p.vertices[k]);
+            if (extent.size() <= id) extent.resize(id + 1, 0.0);
+            extent[id] = glm::length(box.extent());
             const auto base = static_cast<std::uint32_t>(vertices.size());
             for (int k = 0; k < p.vertexCount; ++k) {
                 vertices.push_back(toEmbree(p.vertices[k]));
@@ -254,9 +261,20 @@ struct RayCaster::Impl {
         return true;
     }
 
-    double tolerance(const LayerData& l, const glm::dvec3& a, const glm::dvec3& b) const {
-        const double magnitude = std::max({l.magnitude, maxAbs(a), maxAbs(b)});
-        return std::max(coincidenceOfSize * size, coincidenceOfMagnitude * magnitude);
+    // The size coincidence is measured against at a segment's ends: the
+    // larger of the polygons they lie on (the frame's when on none). Not the
+    // frame's: a 1 km site plane made a ceiling lamp 1 mm under its ceiling
+    // coincident with it, and the room dark.
+    double localSize(const Segment& in) const {
+        double s = 0.0;
+        for (std::uint32_t p : {in.fromPolygon, in.toPolygon})
+            if (p < extent.size()) s = std::max(s, extent[p]);
+        return s > 0.0 ? s : size;
+    }
+
+    double tolerance(const LayerData& l, const Segment& in) const {
+        const double magnitude = std::max({l.magnitude, maxAbs(in.from), maxAbs(in.to)});
+        return std::max(coincidenceOfSize * localSize(in), coincidenceOfMagnitude * magnitude);
     }
 
     // The segment with its tolerance; false when its ends are closer than
@@ -264,7 +282,7 @@ struct RayCaster::Impl {
     bool place(const LayerData& l, const Segment& in, PlacedSegment& s) const {
         const glm::dvec3 d = in.to - in.from;
         const double len = glm::length(d);
-        const double tol = tolerance(l, in.from, in.to);
+        const double tol = tolerance(l, in);
         if (!(len > 2.0 * tol)) return false;
         s = PlacedSegment{in.from, d, tol / len, 1.0 - tol / len, tol, in.fromPolygon, in.toPolygon};
         return true;

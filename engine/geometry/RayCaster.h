@@ -62,8 +62,10 @@ class RayCaster {
     // when segment i is blocked. Thread-safe.
     //
     // A polygon blocks a segment when the segment crosses it strictly between
-    // its ends, farther than the coincidence tolerance (coincidenceTolerance())
-    // from both. The polygons the ends lie on never block it. Near an end, a
+    // its ends, farther than the coincidence tolerance from both: a fixed
+    // fraction (coincidenceOfSize) of the larger of the polygons the ends lie
+    // on, so that it means the same at every scale and in every part of a
+    // scene (of the frame's size when they lie on none). The polygons the ends lie on never block it. Near an end, a
     // polygon coincident with the end's polygon (its plane within the
     // tolerance of the end point) and facing the same way stands in front of
     // it exactly when its index is lower: of a stack of coincident surfaces
@@ -72,8 +74,9 @@ class RayCaster {
     // each is placed on the segment in double precision.
     std::uint16_t blocked(Layer layer, std::span<const Segment> segments) const;
 
-    // Distance under which two surfaces count as coincident: a fixed fraction
-    // of the frame's size, so that it means the same at every scale.
+    // Distance under which two surfaces count as coincident in the frame as
+    // a whole (for picking, and for where light goes): a fixed fraction of
+    // the frame's size, so that it means the same at every scale.
     double coincidenceTolerance() const;
 
     // Nearest hit along a ray in either layer (for picking, and for where light goes): polygon
@@ -89,7 +92,7 @@ class RayCaster {
     std::optional<Hit> intersect(const glm::dvec3& origin, const glm::dvec3& direction,
                                  double tmax) const;
 
-    // The coincidence tolerance as a fraction of the frame's largest extent,
+    // The coincidence tolerance as a fraction of a size (see blocked()),
     // and a floor of it relative to the largest absolute coordinate (double
     // rounding of the end points far from the origin).
     static constexpr double coincidenceOfSize = 1e-6;

@@ -122,9 +122,9 @@ const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount) {
     return vertexCount == 4 ? quad : triangle;
 }
 
-Hierarchy::Hierarchy(const Scene& scene, double minArea)
+Hierarchy::Hierarchy(const Scene& scene, double minArea, std::vector<double> objectMinArea)
     : scene_(scene), polygonElements_(scene.polygons.size(), kNone), meshTouched_(scene.polygons.size(), 1),
-      objectClusters_(scene.objects.size(), kNone), minArea_(minArea) {
+      objectClusters_(scene.objects.size(), kNone), minArea_(minArea), objectMinArea_(std::move(objectMinArea)) {
     std::vector<std::uint32_t> dynamicObjects, staticObjects;
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
         if (scene.objects[o].polygonCount == 0) continue;
@@ -367,7 +367,8 @@ std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool re
         // Numbered again (attachToRoot), a surface keeps the size it had: its
         // area after a move may differ by a rounding error, and the depth of
         // its existing quadtree must stay allowed.
-        const std::uint64_t count = renumber ? bounds_[id].range.size() : quadtreeIndexCount(e.area, minArea_ / 4.0, what);
+        const std::uint64_t count =
+            renumber ? bounds_[id].range.size() : quadtreeIndexCount(e.area, minArea(e.object) / 4.0, what);
         bounds_[id].range = {first, checkedAdd(first, count - 1, what)};
         assignQuadtreeRanges(id);
         return bounds_[id].range.last;

@@ -42,9 +42,10 @@ inline double radicalInverse(std::uint32_t k, std::uint32_t base) {
 
 class Hierarchy {
 public:
-    // `scene` must outlive the hierarchy. minArea: the area threshold A_e. Throws IndexRangeOverflow when the
-    // numbering would not fit 64 bits.
-    Hierarchy(const Scene& scene, double minArea);
+    // `scene` must outlive the hierarchy. minArea: the area threshold A_e; objectMinArea, when given (one per
+    // object), each object's own (an object closed in a room of an open scene: refine/Surroundings.h). Throws
+    // IndexRangeOverflow when the numbering would not fit 64 bits.
+    Hierarchy(const Scene& scene, double minArea, std::vector<double> objectMinArea = {});
 
     ElementId root() const { return root_; }
     HElement& operator[](ElementId id) { return elements_[id]; }
@@ -62,6 +63,10 @@ public:
     // (an id may be freed, and given again) knows by it whether any was.
     std::uint64_t releases() const { return releases_; }
     double minArea() const { return minArea_; }
+    // The area threshold of an object's polygons: its own, or minArea().
+    double minArea(std::uint32_t object) const {
+        return object < objectMinArea_.size() ? objectMinArea_[object] : minArea_;
+    }
 
     // The surface element of each input polygon (quadtree root).
     ElementId polygonElement(std::uint32_t polygon) const { return polygonElements_[polygon]; }
@@ -176,6 +181,7 @@ private:
     std::vector<ElementId> movable_;
     ElementId root_ = kNone;
     double minArea_;
+    std::vector<double> objectMinArea_;  // per object, or empty
 };
 
 }  // namespace rad

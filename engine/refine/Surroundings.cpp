@@ -12,29 +12,32 @@
 
 namespace rad {
 
-Surroundings measureSurroundings(const Scene& scene, const RayCaster& rays) {
-    std::vector<double> cumulative(scene.polygons.size());
-    double total = 0.0;
-    for (std::size_t p = 0; p < scene.polygons.size(); ++p)
-        cumulative[p] = total += scene.polygons[p].area();
+namespace {
+
+// `count` points spread by area over `polygons` (stratified over their
+// running area), kSurroundingsRays each; shares of `total`, the scene's area.
+Surroundings measureFrom(const Scene& scene, const RayCaster& rays, const std::vector<std::uint32_t>& polygons,
+                         int count, double total) {
+    std::vector<double> cumulative(polygons.size());
+    double area = 0.0;
+    for (std::size_t i = 0; i < polygons.size(); ++i) cumulative[i] = area += scene.polygons[polygons[i]].area();
     const Aabb bounds = scene.bounds();
-    if (!(total > 0.0) || bounds.empty()) return {};
+    if (!(area > 0.0) || !(total > 0.0) || bounds.empty()) return {};
     const double reach = 4.0 * glm::length(bounds.extent()) + 1.0;
-    std::vector<double> seen(kSurroundingsPoints, 0.0);
-    std::vector<int> escaped(kSurroundingsPoints, 0);
-    tbb::parallel_for(0, kSurroundingsPoints, [&](int k) {
-        // The point: area-weighted, stratified over the polygons' running area.
-        const double u = (k + 0.5) / kSurroundingsPoints * total;
-        const std::size_t id = std::min<std::size_t>(
-            std::lower_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin(),
-            scene.polygons.size() - 1);
-        const Polygon& p = scene.polygons[id];
+    std::vector<double> seen(static_cast<std::size_t>(count), 0.0);
+    std::vector<int> escaped(static_cast<std::size_t>(count), 0);
+    tbb::parallel_for(0, count, [&](int k) {
+        const double u = (k + 0.5) / count * area;
+        const std::size_t at =
+            std::min<std::size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin(),
+                                  polygons.size() - 1);
+        const Polygon& p = scene.polygons[polygons[at]];
         const auto& params = polygonSampleParams(p.vertexCount);
         const glm::dvec3 x = polygonPoint(p, params[static_cast<std::size_t>(k) % params.size()]);
         const glm::dvec3 n = p.normal();
         const glm::dvec3 a = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
         const glm::dvec3 t = glm::normalize(glm::cross(n, a)), b = glm::cross(n, t);
-        double area = 0.0;
+        double visible = 0.0;
         for (int j = 0; j < kSurroundingsRays; ++j) {
             const auto index = static_cast<std::uint32_t>(k * kSurroundingsRays + j);
             // Uniform over the hemisphere: cos theta uniform in (0, 1].
@@ -50,9 +53,9 @@ Surroundings measureSurroundings(const Scene& scene, const RayCaster& rays) {
             }
             const double c =
                 std::max(0.2, std::abs(glm::dot(scene.polygons[hit->polygon].normal(), d)));
-            area += 2.0 * std::numbers::pi * hit->t * hit->t / c;
+            visible += 2.0 * std::numbers::pi * hit->t * hit->t / c;
         }
-        seen[static_cast<std::size_t>(k)] = area / kSurroundingsRays;
+        seen[static_cast<std::size_t>(k)] = visible / kSurroundingsRays;
     });
     double mean = 0.0;
     int left = 0;
@@ -60,14 +63,66 @@ Surroundings measureSurroundings(const Scene& scene, const RayCaster& rays) {
         mean += seen[k];
         left += escaped[k];
     }
-    mean /= kSurroundingsPoints;
-    return {std::clamp(mean / total, 0.0, 1.0),
-            double(left) / (double(kSurroundingsPoints) * kSurroundingsRays)};
+    mean /= count;
+    return {std::clamp(mean / total, 0.0, 1.0), double(left) / (double(count) * kSurroundingsRays)};
+}
+
+double totalArea(const Scene& scene) {
+    double total = 0.0;
+    for (const Polygon& p : scene.polygons) total += p.area();
+    return total;
+}
+
+}  // namespace
+
+Surroundings measureSurroundings(const Scene& scene, const RayCaster& rays) {
+    std::vector<std::uint32_t> all(scene.polygons.size());
+    for (std::uint32_t p = 0; p < all.size(); ++p) all[p] = p;
+    return measureFrom(scene, rays, all, kSurroundingsPoints, totalArea(scene));
+}
+
+std::vector<Surroundings> measureObjectSurroundings(const Scene& scene, const RayCaster& rays) {
+    const double total = totalArea(scene);
+    std::vector<Surroundings> out(scene.objects.size());
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const Object& object = scene.objects[o];
+        std::vector<std::uint32_t> own(object.polygonCount);
+        for (std::uint32_t i = 0; i < object.polygonCount; ++i) own[i] = object.firstPolygon + i;
+        if (!own.empty()) out[o] = measureFrom(scene, rays, own, kObjectPoints, total);
+    }
+    return out;
 }
 
 double thresholdScale(const Surroundings& surroundings) {
     if (surroundings.escapedShare > kOpenShare || !(surroundings.visibleShare > 0.0)) return 1.0;
     return std::min(1.0, std::exp2(std::floor(std::log2(surroundings.visibleShare / kRoomShare))));
+}
+
+std::vector<double> objectAreaScales(const Scene& scene, const std::vector<Surroundings>& objects) {
+    const auto closedIn = [&](std::size_t o) {
+        return scene.objects[o].polygonCount > 0 && objects[o].escapedShare <= kOpenShare;
+    };
+    double seen = 0.0, area = 0.0;
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+        if (!closedIn(o)) continue;
+        double own = 0.0;
+        for (std::uint32_t i = 0; i < scene.objects[o].polygonCount; ++i)
+            own += scene.polygons[scene.objects[o].firstPolygon + i].area();
+        seen += objects[o].visibleShare * own;
+        area += own;
+    }
+    const double closed = area > 0.0 ? thresholdScale({seen / area, 0.0}) : 1.0;
+    std::vector<double> out(objects.size(), 1.0);
+    for (std::size_t o = 0; o < objects.size(); ++o)
+        if (closedIn(o)) out[o] = closed;
+    return out;
+}
+
+ThresholdScales measureThresholdScales(const Scene& scene, const RayCaster& rays) {
+    const Surroundings whole = measureSurroundings(scene, rays);
+    ThresholdScales out{thresholdScale(whole), {}};
+    if (whole.escapedShare > kOpenShare) out.objectArea = objectAreaScales(scene, measureObjectSurroundings(scene, rays));
+    return out;
 }
 
 }  // namespace rad

@@ -7,6 +7,8 @@
 // to the whole scene, so that each room of a large scene is refined as it
 // would be alone (Refiner::settings().referencePower).
 
+#include <vector>
+
 #include "geometry/RayCaster.h"
 #include "radiosity/Scene.h"
 
@@ -32,6 +34,12 @@ struct Surroundings {
 // `rays` holds the scene's polygons (either layer).
 Surroundings measureSurroundings(const Scene& scene, const RayCaster& rays);
 
+// The same from kObjectPoints points on each object's own polygons (by area;
+// a share still of the whole scene's area), one per object (an object with
+// no polygons gets the defaults).
+inline constexpr int kObjectPoints = 64;
+std::vector<Surroundings> measureObjectSurroundings(const Scene& scene, const RayCaster& rays);
+
 // A scene whose points see the sky in more than this share of their rays
 // is open: what they see little of is not a room around them (a ground
 // plane 100 m wide with a box on it: each point sees 0.09% of the scene),
@@ -44,5 +52,25 @@ inline constexpr double kOpenShare = 0.2;
 // moving an object (which changes the estimate a little) leaves the
 // thresholds of a from-scratch solve where the solve's were.
 double thresholdScale(const Surroundings& surroundings);
+
+// In an open scene (which keeps 1), the default area threshold's scale per
+// object. The objects closed in from the sky (no more than kOpenShare of
+// their rays leave) are the scene's closed part, and take thresholdScale of
+// its mean share (by area), as a closed scene's rooms take the scene's; the
+// others keep 1. A room on a site plane 1 km wide sees its own walls, not
+// the sky, and is meshed about as it would be alone (with the plane's area
+// in the scene's, 2e-5 of it is 20 m^2: its walls, floor and furniture
+// could not be divided at all). The reference power stays the scene's: the
+// share of the emitted power a point sees is not measured.
+std::vector<double> objectAreaScales(const Scene& scene, const std::vector<Surroundings>& objects);
+
+// Both, measured with `rays` (the scene's polygons): the scene's scale (of
+// the reference power, and of the default area threshold), and in an open
+// scene each object's for its area threshold (empty: the scene's for all).
+struct ThresholdScales {
+    double scene = 1.0;
+    std::vector<double> objectArea;
+};
+ThresholdScales measureThresholdScales(const Scene& scene, const RayCaster& rays);
 
 }  // namespace rad

@@ -71,6 +71,9 @@ struct SolveStats {
     double refineSeconds = 0.0;
     double solveSeconds = 0.0;
     double minArea = 0.0;
+    // The smallest area threshold of any object: minArea, unless objects of
+    // an open scene closed in from the sky took their own (refine/Surroundings.h).
+    double minAreaSmallest = 0.0;
     // The share of the scene's emitted power and area the thresholds are
     // relative to (EngineSettings::localThresholds): 1, or a power of two
     // below it in a scene of many rooms.
