@@ -105,7 +105,7 @@ double emittedPower(const Scene& scene) { return emittedPowerAfter(scene, {}); }
 ThresholdScales localThresholdScales(const Scene& scene, const EngineSettings& settings) {
     if (!settings.localThresholds || scene.polygons.empty()) return {};
     RayCaster rays;
-    rays.setFrame(scene.bounds());
+    rays.setFrame(scene.bounds(), scene.detailCentre(), scene.detailBounds());
     std::vector<std::uint32_t> all(scene.polygons.size());
     std::iota(all.begin(), all.end(), 0u);
     rays.setLayer(Layer::Static, scene, all);
@@ -337,7 +337,7 @@ Engine::Engine(Scene scene, const EngineSettings& settings) {
             dynamicObject = o;
             break;
         }
-    s.rays.setFrame(s.scene.bounds());
+    s.rays.setFrame(s.scene.bounds(), s.scene.detailCentre(), s.scene.detailBounds());
     s.solver.setEnergyGuard(settings.energyGuard);
     s.chooseDynamic(dynamicObject);
     s.stats.polygons = s.scene.polygons.size();

@@ -47,7 +47,11 @@ CameraView makeCameraView(const Camera& camera, const Aabb& bounds, double aspec
     const double cameraNear = camera.znear > 0.0 ? camera.znear : 0.01;
     // A little margin so the farthest surface is not clipped by rounding.
     v.zfar = farthest > 0.0 ? farthest * 1.01 : 1000.0 * cameraNear;
-    v.znear = std::max(cameraNear, v.zfar * 1e-5);
+    // The near plane no farther than 1e-7 of the far one: the 32-bit float
+    // depth still tells surfaces 4 mm apart 5 m away from each other at
+    // that ratio. (At 1e-5, a stray polygon 100 km away pushed the near
+    // plane 1.5 m out, through the room the camera stood in.)
+    v.znear = std::max(cameraNear, v.zfar * 1e-7);
     if (v.zfar <= v.znear) v.zfar = 2.0 * v.znear;  // the whole scene is behind the near plane
 
     v.projection = glm::perspectiveRH_ZO(camera.yfov, aspect, v.znear, v.zfar);

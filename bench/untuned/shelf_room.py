@@ -3,9 +3,10 @@ a point light 1.5 cm from a wall (a sconce), the other inside an open lampshade 
 material is doubleSided; a bookcase with rows of books 4 mm apart against a wall; a cabinet marked
 dynamic; a table on four legs. With --offset D, every node is moved by (D, D/2, -D) metres: the
 same room far from the world's origin, as georeferenced building models are. With --site, it stands
-on a ground plane 1 km wide, 1 cm under its floor.
+on a ground plane 1 km wide, 1 cm under its floor. With --stray D, a 10 cm triangle lies D metres
+away along x, as a CAD export's leftover.
 
-    python3 bench/untuned/shelf_room.py OUT.gltf [--offset D] [--site]
+    python3 bench/untuned/shelf_room.py OUT.gltf [--offset D] [--site] [--stray D]
 """
 import json
 import math
@@ -63,6 +64,9 @@ nodes=[
  {"name":"camera","camera":0,"translation":[3.7,1.6,0.3],"rotation":[-0.05,0.94,0.15,0.3]},
 ]
 if site is not None: nodes.append({"name":"ground","mesh":site})
+if '--stray' in sys.argv:
+    far = float(sys.argv[sys.argv.index('--stray') + 1])
+    nodes.append({"name":"stray","mesh":add_mesh("stray", [[(far,0,0),(far+0.1,0,0),(far,0.1,0)]], 0)})
 g={"asset":{"version":"2.0","generator":"untuned-u5"},"scene":0,"scenes":[{"nodes":list(range(len(nodes)))}],
  "nodes":nodes,"meshes":meshes,"materials":materials,"accessors":accessors,"bufferViews":views,
  "buffers":buffers(),

@@ -371,11 +371,13 @@ RayCaster::~RayCaster() = default;
 RayCaster::RayCaster(RayCaster&&) noexcept = default;
 RayCaster& RayCaster::operator=(RayCaster&&) noexcept = default;
 
-void RayCaster::setFrame(const Aabb& bounds) {
+void RayCaster::setFrame(const Aabb& bounds) { setFrame(bounds, bounds.center(), bounds); }
+
+void RayCaster::setFrame(const Aabb& bounds, const glm::dvec3& detailCentre, const Aabb& detail) {
     if (bounds.empty()) return;
-    const glm::dvec3 e = bounds.extent();
-    const double size = std::max({e.x, e.y, e.z});
-    impl_->origin = bounds.center();
+    const glm::dvec3 e = detail.empty() ? glm::dvec3(0.0) : detail.extent(), whole = bounds.extent();
+    const double size = std::max({e.x, e.y, e.z}) > 0.0 ? std::max({e.x, e.y, e.z}) : std::max({whole.x, whole.y, whole.z});
+    impl_->origin = detailCentre;
     impl_->scale = size > 0.0 ? 1.0 / size : 1.0;
     impl_->size = size > 0.0 ? size : 1.0;
 }
@@ -496,6 +498,11 @@ double RayCaster::framesFromCentre(const glm::dvec3& p) const {
 }
 
 double RayCaster::frameSize() const { return impl_->size; }
+
+double RayCaster::resolutionAt(const glm::dvec3& p) const {
+    const glm::dvec3 d = glm::abs(p - impl_->origin);
+    return 1e-6 * std::max({d.x, d.y, d.z});
+}
 
 std::optional<RayCaster::Hit> RayCaster::intersect(const glm::dvec3& origin,
                                                    const glm::dvec3& direction, double tmax) const {

@@ -43,11 +43,21 @@ class RayCaster {
     void clearInstances();
     // The region the layers live in (the scene's bounds): set before the
     // layers, it makes the float ray casting independent of the scene's scale.
+    // With `detail` (Scene::detailCentre and detailBounds), Embree's
+    // coordinates are taken from that centre and in that box's size, so that
+    // they are as precise as the scene's detail wherever its bounds reach
+    // (Embree's own tolerances are absolute: in a frame a stray polygon made
+    // 100 km wide they were centimetres); the bounds' otherwise.
     void setFrame(const Aabb& bounds);
+    void setFrame(const Aabb& bounds, const glm::dvec3& detailCentre, const Aabb& detail);
     // How far `p` lies from the frame's centre, in the frame's size (its
     // largest extent), along the farthest axis.
     double framesFromCentre(const glm::dvec3& p) const;
     double frameSize() const;
+    // The distance under which Embree's single precision may not tell two
+    // points near `p` apart, with a margin: a millionth of p's distance from
+    // the frame's origin (16 of a float's steps there).
+    double resolutionAt(const glm::dvec3& p) const;
 
     // A visibility ray: a segment between two points on surfaces, and the
     // input polygons they lie on (kNoPolygon when not on one).

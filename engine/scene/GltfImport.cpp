@@ -100,8 +100,24 @@ bool allFinite(const glm::dmat4& m) {
     return true;
 }
 
+// A triangle is degenerate when its area is under this share of its
+// longest edge squared: repeated or collinear corners, a needle whose normal
+// rounding decides. Its own size, not the scene's: a stray object 100 km
+// away once made every triangle under 0.01 m^2 degenerate (a shelf's books).
+constexpr double kDegenerateShape = 1e-12;
+
 double triangleArea(const WorldTriangle& t) {
     return 0.5 * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+}
+
+bool degenerate(const WorldTriangle& t) {
+    double longest2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const glm::dvec3 e = t.v[(k + 1) % 3] - t.v[k];
+        longest2 = std::max(longest2, glm::dot(e, e));
+    }
+    const double area = triangleArea(t);
+    return !(area > kDegenerateShape * longest2) || !std::isfinite(area);
 }
 
 glm::dvec3 triangleNormal(const WorldTriangle& t) {
@@ -1095,7 +1111,6 @@ class Importer {
             for (const WorldTriangle& t : o.triangles)
                 for (const glm::dvec3& v : t.v) box.extend(v);
         const double diagonal2 = box.empty() ? 0.0 : glm::dot(box.extent(), box.extent());
-        const double minArea = 1e-12 * diagonal2;
 
         // Each pending object's polygons; Polygon::object is the pending
         // index until the objects without polygons are left out.
@@ -1128,7 +1143,7 @@ class Importer {
             std::vector<WorldTriangle> kept;
             std::size_t here = 0;
             for (const WorldTriangle& t : pending_[i].triangles) {
-                if (triangleArea(t) <= minArea) {
+                if (degenerate(t)) {
                     ++here;
                 } else {
                     kept.push_back(t);
@@ -1161,12 +1176,9 @@ class Importer {
             dropped += here;
         }
         notes_.degenerateTriangles += dropped;
-        // The threshold follows the scene's size: an object far from the
-        // others (a stray export) makes ordinary triangles degenerate.
-        std::ostringstream size;
-        size << "area under " << minArea << " m^2, 1e-12 of the squared diagonal of the scene's bounds, "
-             << std::sqrt(diagonal2) << " m";
-        if (dropped > 0) note(std::to_string(dropped) + " degenerate triangle(s) dropped (" + size.str() + "; " + where + ")");
+        if (dropped > 0)
+            note(std::to_string(dropped) + " degenerate triangle(s) dropped (area under 1e-12 of their longest edge "
+                 "squared; " + where + ")");
         if (notes_.mergedRegionTriangles > 0)
             note(std::to_string(notes_.mergedRegionTriangles) +
                  " triangle(s) merged with their coplanar neighbours into convex polygons or rectangles");
@@ -1203,7 +1215,7 @@ class Importer {
         }
         if (scene.polygons.empty())
             fail("scene", dropped > 0 ? "contains no polygons: all " + std::to_string(dropped) +
-                                            " triangles are degenerate (" + size.str() + "; is an object far from the others?)"
+                                            " triangles are degenerate (area under 1e-12 of their longest edge squared)"
                                       : "contains no polygons");
         return scene;
     }

@@ -96,6 +96,35 @@ Aabb Scene::bounds() const {
     return box;
 }
 
+namespace {
+
+// Per axis, the value at `share` of the polygons' centroids, in order.
+glm::dvec3 centroidQuantile(const std::vector<Polygon>& polygons, double share) {
+    glm::dvec3 out(0.0);
+    std::vector<double> values(polygons.size());
+    for (int axis = 0; axis < 3; ++axis) {
+        for (std::size_t i = 0; i < polygons.size(); ++i) values[i] = polygons[i].centroid()[axis];
+        const auto at = values.begin() + static_cast<std::ptrdiff_t>(share * double(values.size() - 1) + 0.5);
+        std::nth_element(values.begin(), at, values.end());
+        out[axis] = *at;
+    }
+    return out;
+}
+
+}  // namespace
+
+glm::dvec3 Scene::detailCentre() const {
+    return polygons.empty() ? bounds().center() : centroidQuantile(polygons, 0.5);
+}
+
+Aabb Scene::detailBounds() const {
+    if (polygons.empty()) return bounds();
+    Aabb box;
+    box.extend(centroidQuantile(polygons, 0.01));
+    box.extend(centroidQuantile(polygons, 0.99));
+    return box;
+}
+
 Aabb Scene::objectBounds(std::uint32_t object) const {
     Aabb box;
     const Object& o = objects.at(object);

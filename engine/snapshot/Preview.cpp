@@ -5,7 +5,7 @@ namespace rad {
 
 MeshSnapshot makePreviewSnapshot(const Scene& scene) {
     MeshSnapshot mesh;
-    mesh.origin = displayOrigin(scene.bounds());
+    mesh.origin = displayOrigin(scene);
     for (const Polygon& p : scene.polygons) {
         const Material& m = scene.materials[p.material];
         const glm::vec3 color(m.reflectance + m.emission);

@@ -571,15 +571,16 @@ void patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
 
 }  // namespace
 
-glm::dvec3 displayOrigin(const Aabb& bounds) {
-    if (bounds.empty()) return glm::dvec3(0.0);
-    const glm::dvec3 e = bounds.extent();
+glm::dvec3 displayOrigin(const Scene& scene) {
+    const Aabb bounds = scene.bounds(), detail = scene.detailBounds();
+    const bool holdsOrigin = glm::all(glm::lessThanEqual(bounds.lo, glm::dvec3(0.0))) &&
+                             glm::all(glm::lessThanEqual(glm::dvec3(0.0), bounds.hi));
+    if (bounds.empty() || holdsOrigin) return glm::dvec3(0.0);
+    const glm::dvec3 e = detail.extent();
     const double size = std::max({e.x, e.y, e.z});
-    if (!(size > 0.0) || !std::isfinite(size)) return glm::dvec3(0.0);
-    // Twice the power of two: a box that holds the origin has its centre
-    // within a quarter of a cell of it, and rounds to 0.
-    const double cell = 2.0 * std::exp2(std::ceil(std::log2(size)));
-    return glm::round(bounds.center() / cell) * cell;
+    if (!(size > 0.0) || !std::isfinite(size)) return bounds.center();
+    const double cell = std::exp2(std::ceil(std::log2(size)));
+    return glm::round(scene.detailCentre() / cell) * cell;
 }
 
 MeshSnapshot makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy) {
@@ -596,13 +597,10 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     // signature is unchanged keeps its part. The parts are joined in polygon
     // order (the same mesh as one core makes from scratch).
     const std::size_t polygons = scene.polygons.size();
-    // Parts keep positions relative to the origin they were made with: a
-    // new one (the scene's bounds moved to another cell) meshes them all.
-    mesh.origin = displayOrigin(scene.bounds());
-    if (mesh.origin != cache.origin) {
-        cache = SnapshotCache{};
-        cache.origin = mesh.origin;
-    }
+    // Parts keep positions relative to the origin the first build chose
+    // (a median over the polygons: not remade every frame).
+    if (cache.parts.empty()) cache.origin = displayOrigin(scene);
+    mesh.origin = cache.origin;
     cache.parts.resize(polygons);
     std::vector<std::uint8_t> remeshed(polygons, 0);
     std::atomic<std::size_t> meshed{0}, left{0};

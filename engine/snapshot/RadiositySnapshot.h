@@ -47,7 +47,7 @@ struct SnapshotCache {
         std::size_t leaves = 0;  // when it was meshed: another count changes its size
     };
     std::vector<Part> parts;  // per input polygon
-    glm::dvec3 origin{0.0};   // the parts' positions are relative to it (MeshSnapshot::origin)
+    glm::dvec3 origin{0.0};   // the parts' positions are relative to it (MeshSnapshot::origin), set by the first build
     // The mesh last assembled from the parts: where each part starts in it,
     // and the smoothing's sorted keys of the outline vertices (with the
     // frame they were made in). When no part changed, that mesh stands as it

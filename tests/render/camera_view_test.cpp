@@ -102,7 +102,7 @@ TEST(CameraView, NearAndFarFollowTheSceneScale) {
     const Aabb city = box({-5000, 0, -5000}, {5000, 300, 5000});
     const Camera camera = lookingAt({0, 2000, 12000}, {0, 0, 0});
     const CameraView view = makeCameraView(camera, city, 1.0);
-    EXPECT_GE(view.znear, view.zfar * 1e-5 * 0.999);
+    EXPECT_GE(view.znear, view.zfar * 1e-7 * 0.999);
     for (int i = 0; i < 8; ++i) {
         const double z = project(view, corner(city, i)).z;
         EXPECT_GT(z, 0.0);

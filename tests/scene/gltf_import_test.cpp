@@ -1238,16 +1238,33 @@ TEST(GltfImportErrors, EmptyScene) {
     expectOneLineError(importError(flat), flat, "contains no polygons");
     EXPECT_NE(importError(flat).find("degenerate"), std::string::npos) << importError(flat);
 
-    // An object 1e7 m from the others makes ordinary triangles degenerate
-    // at the scene's size: the error says so, not only "no polygons".
+}
+
+// Whether a triangle is degenerate is judged by its own size: an object 1e7 m
+// from the others (a stray export) once made every ordinary triangle
+// degenerate at the scene's size, and the import failed. Both rectangles
+// are kept, and a needle (area 1e-13 of its longest edge squared) is not.
+TEST(GltfImport, DegenerateIsJudgedByTheTrianglesOwnSize) {
+    TempDir dir;
     GltfBuilder far;
     addRectMesh(far, "Rect", far.addGrey("Grey"));
     far.addNode("\"name\":\"Here\",\"mesh\":0");
     far.addNode("\"name\":\"Stray\",\"mesh\":0,\"translation\":[1e7,0,0]");
-    const fs::path strayFile = far.writeEmbedded(dir, "stray.gltf");
-    const std::string stray = importError(strayFile);
-    expectOneLineError(stray, strayFile, "degenerate");
-    EXPECT_NE(stray.find("far from the others"), std::string::npos) << stray;
+    ImportNotes notes;
+    const Scene stray = loadGltf(path(far.writeEmbedded(dir, "stray.gltf")), &notes);
+    EXPECT_EQ(stray.polygons.size(), 2u);
+    EXPECT_EQ(notes.degenerateTriangles, 0u);
+
+    GltfBuilder needle;
+    std::vector<glm::vec3> pos = kRect;
+    pos.push_back({10, 0, 0});
+    pos.push_back({20, 1e-12f, 0});  // with (0,0,0): a needle 20 m long, 1e-12 m wide
+    needle.addMesh("M", needle.addPositions(pos), needle.addIndices({0, 1, 2, 0, 2, 3, 0, 4, 5}), needle.addGrey("Grey"));
+    needle.addNode("\"name\":\"M\",\"mesh\":0");
+    ImportNotes needleNotes;
+    const Scene s = loadGltf(path(needle.writeEmbedded(dir, "needle.gltf")), &needleNotes);
+    EXPECT_EQ(needleNotes.degenerateTriangles, 1u);
+    EXPECT_EQ(s.polygons.size(), 1u);
 }
 
 TEST(GltfImportErrors, UnknownExtension) {

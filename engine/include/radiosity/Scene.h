@@ -153,6 +153,14 @@ struct Scene {
     std::vector<std::shared_ptr<const Texture>> textures;
 
     Aabb bounds() const;
+    // Where the scene's detail is: per axis, the median of its polygons'
+    // centroids, and the box from the 1st to the 99th percentile of them
+    // (the bounds' centre and the bounds when it has no polygons). What is
+    // kept in single precision is kept relative to them, so that a stray
+    // polygon far away (a CAD export's leftover 100 km out) leaves the rest
+    // its precision.
+    glm::dvec3 detailCentre() const;
+    Aabb detailBounds() const;
     Aabb objectBounds(std::uint32_t object) const;
     // Index of the object with this name, or nullopt.
     std::optional<std::uint32_t> findObject(const std::string& name) const;

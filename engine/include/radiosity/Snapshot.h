@@ -59,13 +59,12 @@ struct SnapshotOverlays {
 };
 
 struct Scene;
-struct Aabb;
 
-// The origin of a scene's snapshots: the centre of its bounds rounded to a
-// multiple of twice the power of two at or above its largest extent, so
-// that a scene whose bounds hold the world's origin keeps 0, and moves
-// within a scene seldom change it.
-glm::dvec3 displayOrigin(const Aabb& bounds);
+// The origin of a scene's snapshots: 0 for a scene whose bounds hold the
+// world's origin; else where its detail is (Scene::detailCentre) rounded to
+// a multiple of the power of two at or above the size of its detail
+// (Scene::detailBounds).
+glm::dvec3 displayOrigin(const Scene& scene);
 
 // Material-preview colours (reflectance + emission) per polygon, flat.
 MeshSnapshot makePreviewSnapshot(const Scene& scene);
