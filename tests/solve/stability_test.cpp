@@ -220,6 +220,41 @@ TEST(Stability, FarFromTheOriginSolvesAsAtIt) {
     std::printf("  test %.2f s\n", secondsSince(start));
 }
 
+// The same room with a 10 cm triangle 10 km and 100 km away (a CAD export's
+// leftover): the light is the room's alone, and so is the energy audit. It
+// guards fixed bugs: Embree's frame followed the bounds, so its float
+// coordinates and absolute tolerances were those of a 100 km scene, and the
+// audit's rays started a millionth of the bounds (10 cm at 100 km) off
+// their surfaces, behind the lampshade.
+TEST(Stability, AStrayPolygonFarAwayChangesNothing) {
+    const auto withStray = [](double distance) {
+        Scene s = roomWithLampshade(V(0.0));
+        if (distance > 0.0)
+            test::addQuadObject(s, "stray", 0,
+                                {{V(distance, 0, 0), V(distance + 0.1, 0, 0), V(distance + 0.1, 0.1, 0), V(distance, 0.1, 0)}});
+        return s;
+    };
+    Engine alone(withStray(0.0), EngineSettings{});
+    ASSERT_TRUE(alone.solve().converged);
+    const std::vector<ObjectRadiosity> base = alone.objectRadiosity();
+    const EnergyBalance baseEnergy = alone.energy();
+    for (double distance : {1e4, 1e5}) {
+        Engine engine(withStray(distance), EngineSettings{});
+        ASSERT_TRUE(engine.solve().converged) << distance;
+        const EnergyBalance e = engine.energy();
+        std::printf("  stray %g m away: absorbed %.4f back faces %.4f of the emitted (alone %.4f, %.4f)\n", distance,
+                    e.absorbed / e.emitted, e.backFaces / e.emitted, baseEnergy.absorbed / baseEnergy.emitted,
+                    baseEnergy.backFaces / baseEnergy.emitted);
+        EXPECT_NEAR(e.absorbed / e.emitted, baseEnergy.absorbed / baseEnergy.emitted, 2e-3) << distance;
+        EXPECT_NEAR(e.backFaces / e.emitted, baseEnergy.backFaces / baseEnergy.emitted, 2e-3) << distance;
+        const std::vector<ObjectRadiosity> objects = engine.objectRadiosity();
+        for (std::size_t i = 0; i < base.size(); ++i) {
+            const double ref = luminance(base[i].radiosity);
+            EXPECT_NEAR(luminance(objects[i].radiosity), ref, 3e-3 * ref) << distance << " m, " << base[i].name;
+        }
+    }
+}
+
 TEST(Stability, TinyAndHugeMoves) {
     const auto start = Clock::now();
     EngineSettings settings;
