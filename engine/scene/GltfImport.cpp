@@ -1039,6 +1039,15 @@ class Importer {
         if (m.occlusionTexture.index >= 0) note(item + ": occlusionTexture ignored");
         if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
             note(item + ": metallicRoughnessTexture ignored");
+        // Glass, foliage cut-outs: the engine has no transmission, so say
+        // what the surface became.
+        if (!m.alphaMode.empty() && m.alphaMode != "OPAQUE") {
+            std::ostringstream s;
+            s << item << ": alphaMode " << m.alphaMode << " (base colour alpha "
+              << (m.pbrMetallicRoughness.baseColorFactor.size() == 4 ? m.pbrMetallicRoughness.baseColorFactor[3] : 1.0)
+              << ") read as opaque: it reflects its base colour and lets no light through";
+            note(s.str());
+        }
         for (const auto& [name, value] : m.extensions) {
             if (name != "KHR_materials_emissive_strength")
                 note(item + ": extension " + name + " ignored");

@@ -631,8 +631,8 @@ TEST(GltfImport, UnsupportedThingsAreNotedNotFatal) {
     GltfBuilder g;
     g.extraTopLevel = "\"extensionsUsed\":[\"KHR_materials_clearcoat\"],";
     const int mat = g.addMaterial(
-        "{\"name\":\"Two\",\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,"
-        "0.5,0.5,1]}}");
+        "{\"name\":\"Two\",\"doubleSided\":true,\"alphaMode\":\"BLEND\",\"pbrMetallicRoughness\":{"
+        "\"baseColorFactor\":[0.5,0.5,0.5,0.2]}}");
     addRectMesh(g, "Rect", mat);
     g.cameras.push_back(
         "{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":1,\"ymag\":1,\"zfar\":10,\"znear\":"
@@ -649,6 +649,7 @@ TEST(GltfImport, UnsupportedThingsAreNotedNotFatal) {
         return false;
     };
     EXPECT_TRUE(noted("KHR_materials_clearcoat"));
+    EXPECT_TRUE(noted("alphaMode BLEND (base colour alpha 0.2) read as opaque"));
     EXPECT_TRUE(noted("doubleSided"));
     EXPECT_TRUE(noted("orthographic"));
 }
