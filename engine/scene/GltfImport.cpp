@@ -903,6 +903,8 @@ class Importer {
             mode != TINYGLTF_MODE_TRIANGLE_FAN)
             fail(item, std::string("mode ") + modeName(mode) + " (" + std::to_string(mode) + ") is not supported");
         if (!prim.targets.empty()) note(item + ": morph targets ignored");
+        if (prim.attributes.count("COLOR_0"))
+            note(item + ": COLOR_0 (vertex colours) ignored: the reflectance is the material's base colour alone");
         std::uint32_t material = materialIndex(prim.material, item);
         const std::vector<glm::dvec3> local = readPositions(prim, item);
         std::vector<glm::vec2> uv;

@@ -634,6 +634,11 @@ TEST(GltfImport, UnsupportedThingsAreNotedNotFatal) {
         "{\"name\":\"Two\",\"doubleSided\":true,\"alphaMode\":\"BLEND\",\"pbrMetallicRoughness\":{"
         "\"baseColorFactor\":[0.5,0.5,0.5,0.2]}}");
     addRectMesh(g, "Rect", mat);
+    // Vertex colours: one VEC3 float per vertex, as COLOR_0 allows.
+    const int colours = g.addPositions({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}});
+    const std::string attributes = "\"attributes\":{";
+    g.meshes.back().insert(g.meshes.back().find(attributes) + attributes.size(),
+                           "\"COLOR_0\":" + std::to_string(colours) + ",");
     g.cameras.push_back(
         "{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":1,\"ymag\":1,\"zfar\":10,\"znear\":"
         "0.1}}");
@@ -650,6 +655,7 @@ TEST(GltfImport, UnsupportedThingsAreNotedNotFatal) {
     };
     EXPECT_TRUE(noted("KHR_materials_clearcoat"));
     EXPECT_TRUE(noted("alphaMode BLEND (base colour alpha 0.2) read as opaque"));
+    EXPECT_TRUE(noted("COLOR_0 (vertex colours) ignored"));
     EXPECT_TRUE(noted("doubleSided"));
     EXPECT_TRUE(noted("orthographic"));
 }
