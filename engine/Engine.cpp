@@ -57,12 +57,6 @@ constexpr double kReach = 1000.0;
 // The least share of the emitted light an edit may leave (Engine::editMaterials).
 constexpr double kLeastPowerRatio = 1e-10;
 
-double totalArea(const Scene& scene) {
-    double a = 0.0;
-    for (const Polygon& p : scene.polygons) a += p.area();
-    return a;
-}
-
 // The scene's emitted power once `edits` (checked) are made: each edited
 // polygon's emission, or material, and each edited light's intensity,
 // replaced. Summed afresh, not as a difference: a light dimmed to 1e-30 of
@@ -113,7 +107,7 @@ ThresholdScales localThresholdScales(const Scene& scene, const EngineSettings& s
 }
 
 // The default area threshold, 2e-5 of the scene's polygon area, scaled.
-double defaultMinArea(const Scene& scene, double scale) { return 2e-5 * scale * totalArea(scene); }
+double defaultMinArea(const Scene& scene, double scale) { return 2e-5 * scale * scene.area(); }
 
 std::vector<double> objectMinAreas(const Scene& scene, const EngineSettings& settings, const ThresholdScales& scales) {
     if (settings.minArea > 0.0 || scales.objectArea.empty()) return {};
@@ -143,7 +137,7 @@ struct Engine::State {
                   RefineSettings{settings.epsilon, scale * emittedPower(scene), settings.samplesPerElement,
                                  settings.maxMemoryBytes > 0 ? settings.maxMemoryBytes : defaultMemoryLimit()}),
           solver(hierarchy, links),
-          updater(hierarchy, links, refiner, solver, emittedPower(scene) / totalArea(scene)),
+          updater(hierarchy, links, refiner, solver, emittedPower(scene) / scene.area()),
           lightLinks(scene, hierarchy, rays) {}
 
     // Adds `object` to the dynamic layer (the objects chosen so far) and

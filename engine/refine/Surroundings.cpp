@@ -67,22 +67,16 @@ Surroundings measureFrom(const Scene& scene, const RayCaster& rays, const std::v
     return {std::clamp(mean / total, 0.0, 1.0), double(left) / (double(count) * kSurroundingsRays)};
 }
 
-double totalArea(const Scene& scene) {
-    double total = 0.0;
-    for (const Polygon& p : scene.polygons) total += p.area();
-    return total;
-}
-
 }  // namespace
 
 Surroundings measureSurroundings(const Scene& scene, const RayCaster& rays) {
     std::vector<std::uint32_t> all(scene.polygons.size());
     for (std::uint32_t p = 0; p < all.size(); ++p) all[p] = p;
-    return measureFrom(scene, rays, all, kSurroundingsPoints, totalArea(scene));
+    return measureFrom(scene, rays, all, kSurroundingsPoints, scene.area());
 }
 
 std::vector<Surroundings> measureObjectSurroundings(const Scene& scene, const RayCaster& rays) {
-    const double total = totalArea(scene);
+    const double total = scene.area();
     std::vector<Surroundings> out(scene.objects.size());
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const Object& object = scene.objects[o];

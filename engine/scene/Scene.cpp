@@ -96,6 +96,12 @@ Aabb Scene::bounds() const {
     return box;
 }
 
+double Scene::area() const {
+    double a = 0.0;
+    for (const Polygon& p : polygons) a += p.area();
+    return a;
+}
+
 namespace {
 
 // Per axis, the value at `share` of the polygons' centroids, in order.

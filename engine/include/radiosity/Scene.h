@@ -153,6 +153,7 @@ struct Scene {
     std::vector<std::shared_ptr<const Texture>> textures;
 
     Aabb bounds() const;
+    double area() const;  // of all polygons' front faces
     // Where the scene's detail is: per axis, the median of its polygons'
     // centroids, and the box from the 1st to the 99th percentile of them
     // (the bounds' centre and the bounds when it has no polygons). What is
