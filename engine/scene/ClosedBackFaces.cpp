@@ -3,33 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <numbers>
 #include <numeric>
 #include <unordered_map>
 
+#include "scene/MeshGeometry.h"
+
 namespace rad {
 namespace {
-
-struct PointHash {
-    std::size_t operator()(const glm::dvec3& p) const {
-        std::uint64_t bits[3];
-        std::memcpy(bits, &p, sizeof bits);
-        return std::hash<std::uint64_t>()(bits[0] * 0x9E3779B97F4A7C15ull ^
-                                          bits[1] * 0xC2B2AE3D27D4EB4Full ^ bits[2]);
-    }
-};
-
-// The solid angle of a triangle seen from the origin, signed: positive when
-// the origin is behind it (Van Oosterom and Strackee 1983).
-double solidAngle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-    const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-    const double num = glm::dot(a, glm::cross(b, c));
-    const double den =
-        la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
-    return 2.0 * std::atan2(num, den);
-}
 
 struct Component {
     double volume = 0.0;  // signed: positive when the faces point out

@@ -10,6 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -18,6 +19,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "scene/Buried.h"
 #include "scene/ClosedBackFaces.h"
 #include "scene/Rectangles.h"
 
@@ -1150,6 +1152,10 @@ class Importer {
         std::size_t dropped = 0;
         std::string where;  // the first objects with degenerate triangles
         int listed = 0;
+        // The closed solids of static objects, which cut the parts of
+        // static polygons buried in them (scene/Buried.h).
+        std::vector<ClosedSolid> solids;
+        std::vector<char> cut(pending_.size(), 0);
         for (std::size_t i = 0; i < pending_.size(); ++i) {
             std::vector<WorldTriangle> kept;
             std::size_t here = 0;
@@ -1158,6 +1164,18 @@ class Importer {
                     ++here;
                 } else {
                     kept.push_back(t);
+                }
+            }
+            if (!pending_[i].object.dynamic) {
+                cut[i] = 1;
+                std::vector<std::array<glm::dvec3, 3>> surface;
+                for (const WorldTriangle& t : kept) surface.push_back(t.v);
+                for (ClosedSolid& s : closedSolids(surface)) {
+                    // A solid with a light inside holds lit space.
+                    const bool lit = std::any_of(lightAt.begin(), lightAt.end(), [&](const auto& light) {
+                        return light.second != i && s.holds(light.first);
+                    });
+                    if (!lit) solids.push_back(std::move(s));
                 }
             }
             bool backs = true;
@@ -1201,6 +1219,31 @@ class Importer {
                  "backs face a closed space no light is in (" +
                  closedWhere + ")");
         const std::vector<std::size_t> duplicates = dropDuplicates(polygons, 1e-9 * std::sqrt(diagonal2));
+        // After the duplicates: a copy in place of a solid is inside nothing.
+        const BuriedParts buried = cutBuriedParts(polygons, cut, solids);
+        if (buried.polygonsCut > 0) {
+            notes_.buriedPolygons += buried.polygonsCut;
+            std::vector<std::size_t> order(pending_.size());
+            std::iota(order.begin(), order.end(), std::size_t(0));
+            std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+                return buried.areaLeftOut[a] > buried.areaLeftOut[b];
+            });
+            double total = 0.0;
+            for (double a : buried.areaLeftOut) total += a;
+            notes_.buriedArea += total;
+            const auto area = [](double a) {
+                std::ostringstream text;
+                text.precision(3);
+                text << a << " m^2";
+                return text.str();
+            };
+            std::string most;
+            for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k)
+                if (buried.areaLeftOut[order[k]] > 0.0)
+                    most += (most.empty() ? "" : ", ") + pending_[order[k]].item + " " + area(buried.areaLeftOut[order[k]]);
+            note(std::to_string(buried.polygonsCut) + " polygon(s) of static objects cut where they pass into closed "
+                 "solids; " + area(total) + " inside them left out, neither lit nor drawn (most: " + most + ")");
+        }
 
         Scene scene;
         scene.materials = std::move(materials_);

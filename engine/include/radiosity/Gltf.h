@@ -49,6 +49,11 @@ struct ImportNotes {
     std::size_t duplicatePolygons = 0;
     std::vector<DuplicatePolygons> duplicates;  // per pair of objects, in the order first met
     std::vector<ClampedReflectance> clampedReflectance;
+    // Polygons of static objects cut where they pass into a closed convex
+    // solid of a static object (a floor slab under a wall, a wall into a
+    // partition), and the area inside the solids left out.
+    std::size_t buriedPolygons = 0;
+    double buriedArea = 0.0;
 };
 
 // Throws SceneError with one line naming the file and the offending item.
