@@ -3,10 +3,12 @@ and over both rooms, outer walls that run through the slabs and each other at th
 partition slab that runs 10 cm into the floor, the ceiling and the outer walls. Only the west room
 has a light (a glowing ceiling panel). Without --doorway the partition is whole, so no straight
 line joins the rooms and every surface of the east room must stay black: whatever light it gets
-leaked. With --doorway the partition has a doorway 0.9 m wide and 2.1 m high. None of the
-settings were tuned on it.
+leaked. With --doorway the partition has a doorway 0.9 m wide and 2.1 m high. With --touching
+the partition only touches the slabs and walls (as a wall drawn standing on the floor); with
+--thin it is one doubleSided quad (no thickness) touching them. None of the settings were tuned
+on it.
 
-    python3 bench/untuned/slab_rooms.py OUT.gltf [--doorway]
+    python3 bench/untuned/slab_rooms.py OUT.gltf [--doorway | --thin] [--touching]
 """
 import json
 import sys
@@ -38,11 +40,17 @@ slab("south-wall", [(-T, -T, -T, L + T, H + T, 0)], 0)
 slab("north-wall", [(-T, -T, D, L + T, H + T, D + T)], 0)
 slab("west-wall", [(-T, -T, -T, 0, H + T, D + T)], 0)
 slab("east-wall", [(L, -T, -T, L + T, H + T, D + T)], 0)
-if "--doorway" in sys.argv:
-    slab("partition", [(X, -0.1, -0.1, X + T, H + 0.1, 1.5), (X, 2.1, 1.5, X + T, H + 0.1, 2.4),
-                       (X, -0.1, 2.4, X + T, H + 0.1, D + 0.1)], 0)
+S = 0.0 if "--touching" in sys.argv or "--thin" in sys.argv else 0.1  # how far the partition runs into the slabs and walls
+if "--thin" in sys.argv:
+    materials.append({"name": "board", "pbrMetallicRoughness": {"baseColorFactor": [0.78, 0.76, 0.72, 1]},
+                      "doubleSided": True})
+    nodes.append({"name": "partition", "mesh": add_mesh("partition", [[(X, 0, 0), (X, 0, D), (X, H, D), (X, H, 0)]],
+                                                          len(materials) - 1)})
+elif "--doorway" in sys.argv:
+    slab("partition", [(X, -S, -S, X + T, H + S, 1.5), (X, 2.1, 1.5, X + T, H + S, 2.4),
+                       (X, -S, 2.4, X + T, H + S, D + S)], 0)
 else:
-    slab("partition", [(X, -0.1, -0.1, X + T, H + 0.1, D + 0.1)], 0)
+    slab("partition", [(X, -S, -S, X + T, H + S, D + S)], 0)
 # The lit room: a glowing panel just under the ceiling, a table, a cabinet against the partition.
 nodes.append({"name": "ceiling-light",
               "mesh": add_mesh("ceiling-light", [[(1.4, H - 0.01, 1.7), (2.6, H - 0.01, 1.7),

@@ -42,6 +42,13 @@ const ReferenceCase kFurnishedRoomCase{"furnished-room", 128, 96, 0.07};
 // in its camera's view, so it has no camera check.
 const ReferenceCase kBlenderRoomCase{"blender-room", 128, 72, 0.05,
                                      "bench/untuned/blender-room.glb"};
+// Two rooms built of slabs that run through each other, lit through a
+// doorway (bench/untuned/slab_rooms.py --doorway), seen from the dark room.
+// No issue sets its target; it is held to 8% (measured 6.6%; 16.0% before
+// the import cut polygons where they pass into closed solids, when the
+// wall elements straddling the partition shone into the dark room). No light
+// is in its camera's view.
+const ReferenceCase kSlabRoomsCase{"slab-rooms", 120, 80, 0.08, "bench/untuned/slab-rooms.gltf"};
 // Measured in the README (12.2% at the default settings), not asserted: no
 // issue sets its target, and its solve under the sanitizers would cost CI
 // time the others need. Its reference is checked against the scene file.
@@ -145,6 +152,7 @@ TEST(CyclesReference, MatchesTheSceneFiles) {
     expectReferenceMatchesScene(kCornellBoxCase);
     expectReferenceMatchesScene(kFurnishedRoomCase);
     expectReferenceMatchesScene(kBlenderRoomCase);
+    expectReferenceMatchesScene(kSlabRoomsCase);
     expectReferenceMatchesScene(kOfficeCase);
 }
 
@@ -156,6 +164,7 @@ TEST(CyclesAccuracy, FurnishedRoomWithinSevenPercent) { expectWithinTarget(kFurn
 TEST(CyclesAccuracy, ARoomWrittenByBlenderWithinFivePercent) {
     expectWithinTarget(kBlenderRoomCase);
 }
+TEST(CyclesAccuracy, RoomsOfSlabsWithinEightPercent) { expectWithinTarget(kSlabRoomsCase); }
 
 }  // namespace
 }  // namespace rad
