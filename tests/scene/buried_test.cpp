@@ -14,6 +14,7 @@
 #include "radiosity/Gltf.h"
 #include "support/GltfBuilder.h"
 #include "support/TempDir.h"
+#include "support/TestScenes.h"
 
 namespace rad {
 namespace {
@@ -21,21 +22,10 @@ namespace {
 using V = glm::dvec3;
 using Triangle = std::array<glm::dvec3, 3>;
 
-// An axis-aligned box as an exporter writes it: 8 shared corners, 12
-// triangles facing out.
+// An axis-aligned box as an exporter writes it: triangles facing out.
 std::vector<Triangle> boxTriangles(V lo, V hi) {
-    const auto c = [&](int x, int y, int z) {
-        return V(x ? hi.x : lo.x, y ? hi.y : lo.y, z ? hi.z : lo.z);
-    };
-    // Each face's corners counter-clockwise seen from outside.
-    const int faces[6][4][3] = {
-        {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
-        {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
-        {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
     std::vector<Triangle> out;
-    for (const auto& f : faces) {
-        const V q[4] = {c(f[0][0], f[0][1], f[0][2]), c(f[1][0], f[1][1], f[1][2]),
-                        c(f[2][0], f[2][1], f[2][2]), c(f[3][0], f[3][1], f[3][2])};
+    for (const auto& q : test::boxFaces(lo, hi, false)) {
         out.push_back({q[0], q[1], q[2]});
         out.push_back({q[0], q[2], q[3]});
     }
@@ -139,20 +129,6 @@ TEST(Buried, OpenOrInsideOutMeshesAreNoSolids) {
     EXPECT_FALSE(two[0].holds(two[0].box.lo));  // on its surface
 }
 
-// glTF boxes (outward faces) as one mesh.
-int addBoxes(test::GltfBuilder& g, const std::string& name,
-             const std::vector<std::pair<V, V>>& boxes, int material) {
-    std::vector<glm::vec3> positions;
-    std::vector<std::uint32_t> indices;
-    for (const auto& [lo, hi] : boxes)
-        for (const Triangle& t : boxTriangles(lo, hi))
-            for (const V& v : t) {
-                indices.push_back(static_cast<std::uint32_t>(positions.size()));
-                positions.emplace_back(v);
-            }
-    return g.addMesh(name, g.addPositions(positions), g.addIndices(indices), material);
-}
-
 // Two rooms built from slabs: one floor slab and one ceiling slab over
 // both, outer walls through the slabs, and a whole partition slab running
 // 10 cm into the floor, the ceiling and the walls; a cabinet in the east
@@ -170,7 +146,7 @@ TEST(Buried, SlabRoomsKeepTheirLightOnTheirSide) {
     const auto slab = [&](const std::string& name, std::vector<std::pair<V, V>> boxes,
                           int material) {
         g.addNode("\"name\":\"" + name +
-                  "\",\"mesh\":" + std::to_string(addBoxes(g, name, boxes, material)));
+                  "\",\"mesh\":" + std::to_string(g.addBoxMesh(name, boxes, material)));
     };
     slab("floor-slab", {{V(-T, -T, -T), V(L + T, 0, D + T)}}, plaster);
     slab("ceiling-slab", {{V(-T, H, -T), V(L + T, H + T, D + T)}}, plaster);
@@ -236,9 +212,9 @@ TEST(Buried, DynamicBoxesAndLitBoxesCutNothing) {
             R"({"name":"lamp","pbrMetallicRoughness":{"baseColorFactor":[0,0,0,1]},"emissiveFactor":[1,1,1]})");
         g.addNode(
             "\"name\":\"slab\",\"mesh\":" +
-            std::to_string(addBoxes(g, "slab", {{V(-0.2, -0.2, -0.2), V(4.2, 0, 4.2)}}, grey)));
+            std::to_string(g.addBoxMesh("slab", {{V(-0.2, -0.2, -0.2), V(4.2, 0, 4.2)}}, grey)));
         g.addNode("\"name\":\"box\",\"mesh\":" +
-                  std::to_string(addBoxes(g, "box", {{V(1, -0.1, 1), V(2, 1, 2)}}, grey)) +
+                  std::to_string(g.addBoxMesh("box", {{V(1, -0.1, 1), V(2, 1, 2)}}, grey)) +
                   (kind == "dynamic" ? ",\"extras\":{\"dynamic\":true}" : ""));
         const float y = kind == "lit" ? 0.5f : 3.0f;  // facing down
         const std::vector<glm::vec3> panel = {

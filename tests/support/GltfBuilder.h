@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "support/TempDir.h"
+#include "support/TestScenes.h"
 
 namespace rad::test {
 
@@ -155,6 +156,20 @@ struct GltfBuilder {
         const int view = addView(bytes);
         return addAccessor("{\"bufferView\":" + std::to_string(view) +
                            ",\"componentType\":5126,\"type\":\"VEC2\",\"count\":" + std::to_string(uv.size()) + "}");
+    }
+    // Axis-aligned boxes (pairs of corners) as one mesh of outward triangles,
+    // as a modelling tool writes solids.
+    int addBoxMesh(const std::string& name, const std::vector<std::pair<glm::dvec3, glm::dvec3>>& boxes,
+                   int material) {
+        std::vector<glm::vec3> positions;
+        std::vector<std::uint32_t> indices;
+        for (const auto& [lo, hi] : boxes)
+            for (const auto& q : boxFaces(lo, hi, false)) {
+                const auto base = static_cast<std::uint32_t>(positions.size());
+                for (const glm::dvec3& v : q) positions.emplace_back(v);
+                for (std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) indices.push_back(base + k);
+            }
+        return addMesh(name, addPositions(positions), addIndices(indices), material);
     }
     // A mesh with one primitive; material < 0 leaves it out, mode < 0 too.
     // texCoords >= 0: its TEXCOORD_0 accessor.

@@ -54,6 +54,9 @@ struct ImportNotes {
     // partition), and the area inside the solids left out.
     std::size_t buriedPolygons = 0;
     double buriedArea = 0.0;
+    // Polygons of static objects split along where polygons of static
+    // objects stand on them or pass through them (scene/Contacts.h).
+    std::size_t contactPolygons = 0;
 };
 
 // Throws SceneError with one line naming the file and the offending item.

@@ -1,0 +1,127 @@
+#include "scene/Contacts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "scene/Pieces.h"
+
+namespace rad {
+namespace {
+
+// A contact splits a polygon when its segment runs across at least this
+// share of the polygon's width along it.
+constexpr double kDividing = 0.5;
+
+}  // namespace
+
+std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
+                            std::span<const char> split, std::span<const ClosedSolid> solids) {
+    // The polygons that may be split: those of the objects to split; of
+    // them, the sheets may split others.
+    struct Ref {
+        std::uint32_t object, index;
+    };
+    std::vector<Ref> refs;
+    std::vector<Aabb> boxes;
+    for (std::size_t o = 0; o < polygons.size(); ++o)
+        if (split[o])
+            for (std::size_t i = 0; i < polygons[o].size(); ++i) {
+                refs.push_back({static_cast<std::uint32_t>(o), static_cast<std::uint32_t>(i)});
+                boxes.push_back(boxOf(polygons[o][i]));
+            }
+    if (refs.empty()) return 0;
+    std::vector<Aabb> solidBoxes;
+    for (const ClosedSolid& s : solids) solidBoxes.push_back(s.box);
+    BoxGrid solidGrid(solidBoxes);
+    std::vector<char> sheet(refs.size(), 1);
+    for (std::size_t r = 0; r < refs.size(); ++r) {
+        const glm::dvec3 centre = polygons[refs[r].object][refs[r].index].centroid();
+        for (std::uint32_t s : solidGrid.near(boxes[r]))
+            if (solids[s].bounds(centre)) {
+                sheet[r] = 0;
+                break;
+            }
+    }
+    std::vector<Aabb> sheetBoxes;
+    std::vector<std::uint32_t> sheets;
+    for (std::size_t r = 0; r < refs.size(); ++r)
+        if (sheet[r]) {
+            sheets.push_back(static_cast<std::uint32_t>(r));
+            sheetBoxes.push_back(boxes[r]);
+        }
+    if (sheets.empty()) return 0;
+    BoxGrid grid(sheetBoxes);
+    // The segments of each polygon first, then the splits: a split polygon
+    // still meets the others as it was.
+    std::vector<std::vector<std::pair<glm::dvec3, glm::dvec3>>> segments(refs.size());
+    for (std::size_t r = 0; r < refs.size(); ++r) {
+        const Polygon& p = polygons[refs[r].object][refs[r].index];
+        const Aabb& box = boxes[r];
+        const glm::dvec3 reach = glm::max(glm::abs(box.lo), glm::abs(box.hi));
+        // Positions come as float32: allow for their rounding, and for the
+        // polygon's own size.
+        const double tolerance =
+            1e-6 * glm::length(box.extent()) + 1e-7 * std::max({reach.x, reach.y, reach.z});
+        const glm::dvec3 normal = p.normal();
+        const double offset = glm::dot(normal, p.vertices[0]);
+        Aabb around = box;
+        around.lo -= glm::dvec3(tolerance);
+        around.hi += glm::dvec3(tolerance);
+        const Piece whole = pieceOf(p);
+        for (std::uint32_t g : grid.near(around)) {
+            const std::uint32_t q = sheets[g];
+            // Another object's: a partition on a floor, not a shelf on its
+            // bookcase's side (refinement divides around an object's own
+            // contacts; splitting there too multiplied the polygons).
+            if (refs[q].object == refs[r].object || !overlaps(around, boxes[q], 0.0)) continue;
+            const Polygon& other = polygons[refs[q].object][refs[q].index];
+            PlaneSection s = planeSection(std::span(other.vertices.data(), other.vertexCount),
+                                          normal, offset, tolerance);
+            if (s.count < 2 || !s.front) continue;
+            if (!clipToPiece(whole, normal, s.a, s.b, tolerance)) continue;
+            // Only lines that divide the polygon: a partition across a floor,
+            // not a table leg on it (refinement divides around small
+            // contacts; splitting there too would multiply the polygons).
+            const glm::dvec3 along = glm::normalize(s.b - s.a);
+            double lo = 0.0, hi = 0.0;
+            for (int k = 0; k < p.vertexCount; ++k) {
+                const double t = glm::dot(p.vertices[k] - s.a, along);
+                lo = std::min(lo, t);
+                hi = std::max(hi, t);
+            }
+            if (glm::length(s.b - s.a) >= kDividing * (hi - lo)) segments[r].emplace_back(s.a, s.b);
+        }
+    }
+    std::size_t count = 0;
+    std::vector<std::vector<Polygon>> out(polygons.size());
+    std::vector<Piece> pieces;
+    std::size_t r = 0;
+    for (std::size_t o = 0; o < polygons.size(); ++o) {
+        if (!split[o]) {
+            out[o] = std::move(polygons[o]);
+            continue;
+        }
+        for (const Polygon& p : polygons[o]) {
+            const std::vector<std::pair<glm::dvec3, glm::dvec3>>& cuts = segments[r++];
+            if (cuts.empty()) {
+                out[o].push_back(p);
+                continue;
+            }
+            const glm::dvec3 normal = p.normal();
+            const Aabb box = boxOf(p);
+            const double tolerance = 1e-6 * glm::length(box.extent());
+            pieces.assign(1, pieceOf(p));
+            for (const auto& [a, b] : cuts) {
+                if (pieces.size() >= kMostPieces) break;
+                cutAlong(pieces, normal, a, b, tolerance);
+            }
+            count += pieces.size() > 1;
+            appendPieces(p, pieces, out[o]);
+        }
+    }
+    polygons = std::move(out);
+    return count;
+}
+
+}  // namespace rad
