@@ -117,7 +117,24 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
                 cutAlong(pieces, normal, a, b, tolerance);
             }
             count += pieces.size() > 1;
+            const std::size_t first = out[o].size();
             appendPieces(p, pieces, out[o]);
+            // The pieces' edges along the cuts are creases.
+            for (std::size_t i = first; i < out[o].size(); ++i) {
+                Polygon& piece = out[o][i];
+                for (int k = 0; k < piece.vertexCount; ++k) {
+                    const glm::dvec3& u = piece.vertices[k];
+                    const glm::dvec3& v = piece.vertices[(k + 1) % piece.vertexCount];
+                    for (const auto& [a, b] : cuts) {
+                        const glm::dvec3 across = glm::normalize(glm::cross(normal, b - a));
+                        if (std::abs(glm::dot(across, u - a)) <= tolerance &&
+                            std::abs(glm::dot(across, v - a)) <= tolerance) {
+                            piece.creases |= static_cast<std::uint8_t>(1u << k);
+                            break;
+                        }
+                    }
+                }
+            }
         }
     }
     polygons = std::move(out);

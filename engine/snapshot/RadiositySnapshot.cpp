@@ -164,7 +164,13 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, const glm
     const bool triangle = h[top].patch.n == 3;
     for (const Vertex& v : vertices) {
         const LatticePoint& q = v.p;
-        if (q.i == 0 || q.j == 0 || (triangle ? q.i + q.j == size : (q.i == size || q.j == size)))
+        // The edges it lies on, edge k from polygon vertex k to k + 1. One
+        // on a crease keeps its own value (a partition stands there).
+        const bool on[4] = {q.j == 0, triangle ? q.i + q.j == size : q.i == size,
+                            triangle ? q.i == 0 : q.j == size, !triangle && q.i == 0};
+        bool crease = false;
+        for (int k = 0; k < 4; ++k) crease = crease || (on[k] && (polygon.creases >> k & 1));
+        if ((on[0] || on[1] || on[2] || on[3]) && !crease)
             outline.push_back(static_cast<std::uint32_t>(mesh.positions.size()));
         mesh.positions.emplace_back(v.position - origin);
         mesh.normals.push_back(normal);

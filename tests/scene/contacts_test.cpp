@@ -12,6 +12,7 @@
 
 #include "radiosity/Engine.h"
 #include "radiosity/Gltf.h"
+#include "radiosity/Snapshot.h"
 #include "support/GltfBuilder.h"
 #include "support/TempDir.h"
 #include "support/TestScenes.h"
@@ -138,6 +139,19 @@ TEST(Contacts, APartitionOfNoThicknessLetsNoLightThrough) {
         if (o.name.rfind("east-", 0) == 0) {
             EXPECT_LT(luminance(o.radiosity), 1e-3 * west) << o.name;
         }
+    // The display keeps the split: the floor's and ceiling's vertices on the
+    // east side of the partition's foot share no value with the west side's
+    // (shared, their Gouraud shading carried the lit room's light a mesh
+    // element into the dark one).
+    const MeshSnapshot mesh = engine.snapshot();
+    double darkest = 0.0;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        const glm::dvec3 p = glm::dvec3(mesh.positions[i]) + mesh.origin;
+        if (std::abs(p.x - X) < 1e-6 && std::abs(mesh.normals[i].y) > 0.99 &&
+            glm::dot(glm::dvec3(mesh.colors[i]), glm::dvec3(1.0)) < 1e-3 * west)
+            darkest += 1.0;
+    }
+    EXPECT_GT(darkest, 0.0) << "no dark vertex on the east side of the partition's foot";
 }
 
 }  // namespace

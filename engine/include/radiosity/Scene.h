@@ -68,6 +68,10 @@ struct Polygon {
     // Texture coordinates per vertex (glTF TEXCOORD of the material's
     // texture); zero when the material has no texture.
     std::array<glm::vec2, 4> uv{};
+    // Bit k: the edge from vertex k to k + 1 lies where a sheet stands on
+    // the polygon (scene/Contacts.h). The display shares no values across
+    // it: the two sides are lit apart.
+    std::uint8_t creases = 0;
 
     glm::dvec3 normal() const;  // unit, from the winding
     double area() const;
