@@ -55,6 +55,7 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
     // The segments of each polygon first, then the splits: a split polygon
     // still meets the others as it was.
     std::vector<std::vector<std::pair<glm::dvec3, glm::dvec3>>> segments(refs.size());
+    std::vector<std::uint8_t> onEdges(refs.size(), 0);  // creases where a sheet stands on an edge
     for (std::size_t r = 0; r < refs.size(); ++r) {
         const Polygon& p = polygons[refs[r].object][refs[r].index];
         const Aabb& box = boxes[r];
@@ -79,6 +80,22 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
             PlaneSection s = planeSection(std::span(other.vertices.data(), other.vertexCount),
                                           normal, offset, tolerance);
             if (s.count < 2 || !s.front) continue;
+            // Standing on an edge of it (the polygon ends under the sheet):
+            // no split, but a crease.
+            for (int k = 0; k < p.vertexCount; ++k) {
+                const glm::dvec3& u = p.vertices[k];
+                const glm::dvec3 edge = p.vertices[(k + 1) % p.vertexCount] - u;
+                const double length = glm::length(edge);
+                const auto off = [&](const glm::dvec3& x) {
+                    return glm::length(glm::cross(edge, x - u)) / length;
+                };
+                if (off(s.a) > tolerance || off(s.b) > tolerance) continue;
+                const double ta = glm::dot(s.a - u, edge) / length,
+                             tb = glm::dot(s.b - u, edge) / length;
+                if (std::min(std::max(ta, tb), length) - std::max(std::min(ta, tb), 0.0) >
+                    tolerance)
+                    onEdges[r] |= static_cast<std::uint8_t>(1u << k);
+            }
             if (!clipToPiece(whole, normal, s.a, s.b, tolerance)) continue;
             // Only lines that divide the polygon: a partition across a floor,
             // not a table leg on it (refinement divides around small
@@ -106,6 +123,7 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
             const std::vector<std::pair<glm::dvec3, glm::dvec3>>& cuts = segments[r++];
             if (cuts.empty()) {
                 out[o].push_back(p);
+                out[o].back().creases |= onEdges[r - 1];
                 continue;
             }
             const glm::dvec3 normal = p.normal();
@@ -119,13 +137,18 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
             count += pieces.size() > 1;
             const std::size_t first = out[o].size();
             appendPieces(p, pieces, out[o]);
-            // The pieces' edges along the cuts are creases.
+            // The pieces' edges along the cuts, and along the polygon's own
+            // edges that a sheet stands on, are creases.
+            std::vector<std::pair<glm::dvec3, glm::dvec3>> lines = cuts;
+            for (int k = 0; k < p.vertexCount; ++k)
+                if (onEdges[r - 1] >> k & 1)
+                    lines.emplace_back(p.vertices[k], p.vertices[(k + 1) % p.vertexCount]);
             for (std::size_t i = first; i < out[o].size(); ++i) {
                 Polygon& piece = out[o][i];
                 for (int k = 0; k < piece.vertexCount; ++k) {
                     const glm::dvec3& u = piece.vertices[k];
                     const glm::dvec3& v = piece.vertices[(k + 1) % piece.vertexCount];
-                    for (const auto& [a, b] : cuts) {
+                    for (const auto& [a, b] : lines) {
                         const glm::dvec3 across = glm::normalize(glm::cross(normal, b - a));
                         if (std::abs(glm::dot(across, u - a)) <= tolerance &&
                             std::abs(glm::dot(across, v - a)) <= tolerance) {

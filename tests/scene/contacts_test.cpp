@@ -61,6 +61,30 @@ TEST(Contacts, APartitionAcrossTheFloorSplitsIt) {
     EXPECT_EQ(polygons[1].size(), 1u);  // the floor meets the sheet's back edge only
 }
 
+// Two floors meeting under a partition: nothing to split, but the edges
+// under it become creases, which the display does not smooth across (the
+// split's pieces get them along the split too).
+TEST(Contacts, ASheetOnTheEdgeBetweenTwoFloorsMakesCreases) {
+    std::vector<std::vector<Polygon>> polygons{
+        {quad(V(0, 0, 0), V(0, 0, 3), V(1.5, 0, 3), V(1.5, 0, 0), 0),
+         quad(V(1.5, 0, 0), V(1.5, 0, 3), V(4, 0, 3), V(4, 0, 0), 0)},
+        {quad(V(1.5, 0, 0), V(1.5, 2, 0), V(1.5, 2, 3), V(1.5, 0, 3), 1)}};
+    EXPECT_EQ(splitAtContacts(polygons, std::vector<char>{1, 1}, {}), 0u);
+    ASSERT_EQ(polygons[0].size(), 2u);
+    for (const Polygon& p : polygons[0])
+        for (int k = 0; k < 4; ++k) {
+            const bool under = p.vertices[k].x == 1.5 && p.vertices[(k + 1) % 4].x == 1.5;
+            EXPECT_EQ(bool(p.creases >> k & 1), under) << k;
+        }
+    auto split = floorAndSheet(1.5, 0.0, 3.0);
+    splitAtContacts(split, std::vector<char>{1, 1}, {});
+    for (const Polygon& p : split[0]) {
+        int creases = 0;
+        for (int k = 0; k < p.vertexCount; ++k) creases += p.creases >> k & 1;
+        EXPECT_EQ(creases, 1);
+    }
+}
+
 TEST(Contacts, SmallContactsOwnPartsSolidsAndDynamicObjectsSplitNothing) {
     {  // across a tenth of the floor's depth
         auto polygons = floorAndSheet(1.5, 1.0, 1.3);
