@@ -65,14 +65,6 @@ bool ClosedSolid::holds(const glm::dvec3& p) const {
     return omega / (4.0 * std::numbers::pi) > 0.75;
 }
 
-bool ClosedSolid::bounds(const glm::dvec3& p) const {
-    if (glm::any(glm::lessThan(p, box.lo - tolerance)) ||
-        glm::any(glm::greaterThan(p, box.hi + tolerance)))
-        return false;
-    return std::any_of(triangles.begin(), triangles.end(),
-                       [&](const auto& t) { return onTriangle(t, p, tolerance); });
-}
-
 std::vector<ClosedSolid> closedSolids(std::span<const std::array<glm::dvec3, 3>> triangles) {
     std::unordered_map<glm::dvec3, std::uint32_t, PointHash> ids;
     std::vector<glm::dvec3> points;

@@ -35,8 +35,6 @@ struct ClosedSolid {
     // Whether `p` lies inside: the faces' winding number about it is 1 (0
     // outside), and it is not within the tolerance of a face.
     bool holds(const glm::dvec3& p) const;
-    // Whether `p` lies on a face, within the tolerance.
-    bool bounds(const glm::dvec3& p) const;
 };
 std::vector<ClosedSolid> closedSolids(std::span<const std::array<glm::dvec3, 3>> triangles);
 

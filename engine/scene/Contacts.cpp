@@ -16,9 +16,8 @@ constexpr double kDividing = 0.5;
 }  // namespace
 
 std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
-                            std::span<const char> split, std::span<const ClosedSolid> solids) {
-    // The polygons that may be split: those of the objects to split; of
-    // them, the sheets may split others.
+                            std::span<const char> split) {
+    // The polygons that may split and be split: those of the objects to split.
     struct Ref {
         std::uint32_t object, index;
     };
@@ -31,31 +30,11 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
                 boxes.push_back(boxOf(polygons[o][i]));
             }
     if (refs.empty()) return 0;
-    std::vector<Aabb> solidBoxes;
-    for (const ClosedSolid& s : solids) solidBoxes.push_back(s.box);
-    BoxGrid solidGrid(solidBoxes);
-    std::vector<char> sheet(refs.size(), 1);
-    for (std::size_t r = 0; r < refs.size(); ++r) {
-        const glm::dvec3 centre = polygons[refs[r].object][refs[r].index].centroid();
-        for (std::uint32_t s : solidGrid.near(boxes[r]))
-            if (solids[s].bounds(centre)) {
-                sheet[r] = 0;
-                break;
-            }
-    }
-    std::vector<Aabb> sheetBoxes;
-    std::vector<std::uint32_t> sheets;
-    for (std::size_t r = 0; r < refs.size(); ++r)
-        if (sheet[r]) {
-            sheets.push_back(static_cast<std::uint32_t>(r));
-            sheetBoxes.push_back(boxes[r]);
-        }
-    if (sheets.empty()) return 0;
-    BoxGrid grid(sheetBoxes);
+    BoxGrid grid(boxes);
     // The segments of each polygon first, then the splits: a split polygon
     // still meets the others as it was.
     std::vector<std::vector<std::pair<glm::dvec3, glm::dvec3>>> segments(refs.size());
-    std::vector<std::uint8_t> onEdges(refs.size(), 0);  // creases where a sheet stands on an edge
+    std::vector<std::uint8_t> onEdges(refs.size(), 0);  // creases where a polygon stands on an edge
     for (std::size_t r = 0; r < refs.size(); ++r) {
         const Polygon& p = polygons[refs[r].object][refs[r].index];
         const Aabb& box = boxes[r];
@@ -70,8 +49,7 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
         around.lo -= glm::dvec3(tolerance);
         around.hi += glm::dvec3(tolerance);
         const Piece whole = pieceOf(p);
-        for (std::uint32_t g : grid.near(around)) {
-            const std::uint32_t q = sheets[g];
+        for (std::uint32_t q : grid.near(around)) {
             // Another object's: a partition on a floor, not a shelf on its
             // bookcase's side (refinement divides around an object's own
             // contacts; splitting there too multiplied the polygons).
@@ -80,7 +58,7 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
             PlaneSection s = planeSection(std::span(other.vertices.data(), other.vertexCount),
                                           normal, offset, tolerance);
             if (s.count < 2 || !s.front) continue;
-            // Standing on an edge of it (the polygon ends under the sheet):
+            // Standing on an edge of it (the polygon ends under the other):
             // no split, but a crease.
             for (int k = 0; k < p.vertexCount; ++k) {
                 const glm::dvec3& u = p.vertices[k];
@@ -138,7 +116,7 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
             const std::size_t first = out[o].size();
             appendPieces(p, pieces, out[o]);
             // The pieces' edges along the cuts, and along the polygon's own
-            // edges that a sheet stands on, are creases.
+            // edges that another polygon stands on, are creases.
             std::vector<std::pair<glm::dvec3, glm::dvec3>> lines = cuts;
             for (int k = 0; k < p.vertexCount; ++k)
                 if (onEdges[r - 1] >> k & 1)

@@ -1245,12 +1245,12 @@ class Importer {
             note(std::to_string(buried.polygonsCut) + " polygon(s) of static objects cut where they pass into closed "
                  "solids; " + area(total) + " inside them left out, neither lit nor drawn (most: " + most + ")");
         }
-        const std::size_t splitAtContact = splitAtContacts(polygons, cut, solids);
+        const std::size_t splitAtContact = splitAtContacts(polygons, cut);
         notes_.contactPolygons += splitAtContact;
         if (splitAtContact > 0)
             note(std::to_string(splitAtContact) +
-                 " polygon(s) of static objects split along where a sheet (a polygon of no closed solid) stands on "
-                 "them or passes through them");
+                 " polygon(s) of static objects split along where another object stands on them or passes "
+                 "through them");
 
         Scene scene;
         scene.materials = std::move(materials_);
