@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <numeric>
 #include <unordered_map>
 
 #include "scene/MeshGeometry.h"
@@ -66,27 +65,10 @@ bool ClosedSolid::holds(const glm::dvec3& p) const {
 }
 
 std::vector<ClosedSolid> closedSolids(std::span<const std::array<glm::dvec3, 3>> triangles) {
-    std::unordered_map<glm::dvec3, std::uint32_t, PointHash> ids;
-    std::vector<glm::dvec3> points;
-    std::vector<std::array<std::uint32_t, 3>> tri(triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k) {
-            const auto [at, added] =
-                ids.try_emplace(triangles[t][k], static_cast<std::uint32_t>(points.size()));
-            if (added) points.push_back(triangles[t][k]);
-            tri[t][k] = at->second;
-        }
-    // The parts: triangles joined by their vertices.
-    std::vector<std::uint32_t> parent(points.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    const auto find = [&](std::uint32_t v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (const auto& t : tri)
-        for (int k = 1; k < 3; ++k) parent[find(t[k])] = find(t[0]);
+    const IndexedTriangles indexed = indexTriangles(triangles);
+    const auto& tri = indexed.triangles;
     std::unordered_map<std::uint32_t, std::vector<std::size_t>> parts;
-    for (std::size_t t = 0; t < tri.size(); ++t) parts[find(tri[t][0])].push_back(t);
+    for (std::size_t t = 0; t < tri.size(); ++t) parts[indexed.part[t]].push_back(t);
 
     std::vector<ClosedSolid> solids;
     const auto key = [](std::uint32_t a, std::uint32_t b) { return std::uint64_t(a) << 32 | b; };

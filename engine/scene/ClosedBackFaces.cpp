@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
-#include <numeric>
 #include <unordered_map>
 
 #include "scene/MeshGeometry.h"
@@ -25,12 +24,8 @@ struct Component {
 bool backFacesFaceNoLight(std::span<const std::array<glm::dvec3, 3>> triangles,
                           std::span<const glm::dvec3> lightPoints, std::size_t mostVisits) {
     if (triangles.empty()) return false;
-    std::unordered_map<glm::dvec3, std::uint32_t, PointHash> ids;
-    std::vector<std::array<std::uint32_t, 3>> tri(triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k)
-            tri[t][k] = ids.try_emplace(triangles[t][k], static_cast<std::uint32_t>(ids.size()))
-                            .first->second;
+    const IndexedTriangles indexed = indexTriangles(triangles);
+    const auto& tri = indexed.triangles;
     // Closed and consistently turned: each directed edge once, and its
     // reverse once.
     std::unordered_map<std::uint64_t, int> edges;
@@ -42,18 +37,9 @@ bool backFacesFaceNoLight(std::span<const std::array<glm::dvec3, 3>> triangles,
         }
     for (const auto& [e, n] : edges)
         if (!edges.contains(key(std::uint32_t(e), std::uint32_t(e >> 32)))) return false;
-    // The closed surfaces: triangles joined by their vertices.
-    std::vector<std::uint32_t> parent(ids.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    const auto find = [&](std::uint32_t v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (const auto& t : tri)
-        for (int k = 1; k < 3; ++k) parent[find(t[k])] = find(t[0]);
     std::unordered_map<std::uint32_t, Component> components;
     for (std::size_t t = 0; t < tri.size(); ++t) {
-        Component& c = components[find(tri[t][0])];
+        Component& c = components[indexed.part[t]];
         c.triangles.push_back(t);
         const auto& v = triangles[t];
         // About the first vertex of the component: small numbers far from the origin.

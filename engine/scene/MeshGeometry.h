@@ -2,11 +2,14 @@
 // What the closed-mesh steps of the import share (scene/ClosedBackFaces.h,
 // scene/Buried.h).
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <functional>
 #include <glm/glm.hpp>
+#include <span>
+#include <vector>
 
 namespace rad {
 
@@ -20,6 +23,15 @@ struct PointHash {
                                           bits[1] * 0xC2B2AE3D27D4EB4Full ^ bits[2]);
     }
 };
+
+// Triangles as indices into their distinct corners (matched exactly), and
+// the parts they form: triangles joined by shared corners.
+struct IndexedTriangles {
+    std::vector<glm::dvec3> points;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<std::uint32_t> part;  // per triangle: its part's first corner
+};
+IndexedTriangles indexTriangles(std::span<const std::array<glm::dvec3, 3>> triangles);
 
 // The solid angle of a triangle seen from the origin, signed: positive when
 // the origin is behind it (Van Oosterom and Strackee 1983).

@@ -14,6 +14,7 @@
 #include "radiosity/Gltf.h"
 #include "radiosity/Snapshot.h"
 #include "support/GltfBuilder.h"
+#include "support/Regions.h"
 #include "support/TempDir.h"
 #include "support/TestScenes.h"
 
@@ -168,14 +169,8 @@ void expectTheDarkRoomStaysDark(bool sheetPartition) {
     EXPECT_GT(notes.contactPolygons, 0u);
     const SolveStats& stats = engine.solve();
     ASSERT_TRUE(stats.converged) << stats.message;
-    double west = 0.0;
-    for (const ObjectRadiosity& o : engine.objectRadiosity())
-        if (o.name == "west-wall") west = luminance(o.radiosity);
-    ASSERT_GT(west, 0.0);
-    for (const ObjectRadiosity& o : engine.objectRadiosity())
-        if (o.name.rfind("east-", 0) == 0) {
-            EXPECT_LT(luminance(o.radiosity), 1e-3 * west) << o.name;
-        }
+    test::expectDarkBeside(engine, "east-", "west-wall", 1e-3);
+    const double west = test::objectLuminance(engine, "west-wall");
     const EnergyBalance e = engine.energy();
     EXPECT_LT(e.backFaces, 0.01 * e.emitted);
     // The display keeps the split: the floor's and ceiling's vertices on the

@@ -14,6 +14,7 @@
 #include "radiosity/Engine.h"
 #include "radiosity/Gltf.h"
 #include "support/Motion.h"
+#include "support/Regions.h"
 #include "support/TestScenes.h"
 
 namespace rad {
@@ -21,23 +22,8 @@ namespace {
 
 using V = glm::dvec3;
 
-double objectLuminance(const Engine& engine, const std::string& name) {
-    for (const ObjectRadiosity& o : engine.objectRadiosity())
-        if (o.name == name) return luminance(o.radiosity);
-    ADD_FAILURE() << "no object " << name;
-    return 0.0;
-}
-
-// The area-weighted mean luminance of the objects whose names start with `prefix`.
-double regionLuminance(const Engine& engine, const std::string& prefix) {
-    double sum = 0.0, area = 0.0;
-    for (const ObjectRadiosity& o : engine.objectRadiosity())
-        if (o.name.rfind(prefix, 0) == 0) {
-            sum += o.area * luminance(o.radiosity);
-            area += o.area;
-        }
-    return area > 0.0 ? sum / area : 0.0;
-}
+using test::objectLuminance;
+using test::regionLuminance;
 
 TEST(Light, FurnaceSeriesAtDefaultSettings) {
     for (double rho : {0.5, 0.9, 0.99}) {
