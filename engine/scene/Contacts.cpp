@@ -35,13 +35,14 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
     // still meets the others as it was.
     std::vector<std::vector<std::pair<glm::dvec3, glm::dvec3>>> segments(refs.size());
     std::vector<std::uint8_t> onEdges(refs.size(), 0);  // creases where a polygon stands on an edge
+    std::vector<double> tolerances(refs.size());
     for (std::size_t r = 0; r < refs.size(); ++r) {
         const Polygon& p = polygons[refs[r].object][refs[r].index];
         const Aabb& box = boxes[r];
         const glm::dvec3 reach = glm::max(glm::abs(box.lo), glm::abs(box.hi));
         // Positions come as float32: allow for their rounding, and for the
         // polygon's own size.
-        const double tolerance =
+        const double tolerance = tolerances[r] =
             1e-6 * glm::length(box.extent()) + 1e-7 * std::max({reach.x, reach.y, reach.z});
         const glm::dvec3 normal = p.normal();
         const double offset = glm::dot(normal, p.vertices[0]);
@@ -98,15 +99,15 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
             continue;
         }
         for (const Polygon& p : polygons[o]) {
-            const std::vector<std::pair<glm::dvec3, glm::dvec3>>& cuts = segments[r++];
+            const std::vector<std::pair<glm::dvec3, glm::dvec3>>& cuts = segments[r];
+            const std::uint8_t edgeCreases = onEdges[r];
+            const double tolerance = tolerances[r++];
             if (cuts.empty()) {
                 out[o].push_back(p);
-                out[o].back().creases |= onEdges[r - 1];
+                out[o].back().creases |= edgeCreases;
                 continue;
             }
             const glm::dvec3 normal = p.normal();
-            const Aabb box = boxOf(p);
-            const double tolerance = 1e-6 * glm::length(box.extent());
             pieces.assign(1, pieceOf(p));
             for (const auto& [a, b] : cuts) {
                 if (pieces.size() >= kMostPieces) break;
@@ -119,7 +120,7 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
             // edges that another polygon stands on, are creases.
             std::vector<std::pair<glm::dvec3, glm::dvec3>> lines = cuts;
             for (int k = 0; k < p.vertexCount; ++k)
-                if (onEdges[r - 1] >> k & 1)
+                if (edgeCreases >> k & 1)
                     lines.emplace_back(p.vertices[k], p.vertices[(k + 1) % p.vertexCount]);
             for (std::size_t i = first; i < out[o].size(); ++i) {
                 Polygon& piece = out[o][i];
