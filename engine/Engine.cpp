@@ -106,8 +106,8 @@ ThresholdScales localThresholdScales(const Scene& scene, const EngineSettings& s
     return measureThresholdScales(scene, rays);
 }
 
-// The default area threshold, 2e-5 of the scene's polygon area, scaled.
-double defaultMinArea(const Scene& scene, double scale) { return 2e-5 * scale * scene.area(); }
+// The default area threshold, scaled.
+double defaultMinArea(const Scene& scene, double scale) { return kDefaultMinAreaShare * scale * scene.area(); }
 
 std::vector<double> objectMinAreas(const Scene& scene, const EngineSettings& settings, const ThresholdScales& scales) {
     if (settings.minArea > 0.0 || scales.objectArea.empty()) return {};

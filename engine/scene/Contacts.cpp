@@ -16,7 +16,7 @@ constexpr double kDividing = 0.5;
 }  // namespace
 
 std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
-                            std::span<const char> split) {
+                            std::span<const char> split, double narrowest) {
     // The polygons that may split and be split: those of the objects to split.
     struct Ref {
         std::uint32_t object, index;
@@ -111,7 +111,7 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
             pieces.assign(1, pieceOf(p));
             for (const auto& [a, b] : cuts) {
                 if (pieces.size() >= kMostPieces) break;
-                cutAlong(pieces, normal, a, b, tolerance);
+                cutAlong(pieces, normal, a, b, tolerance, narrowest);
             }
             count += pieces.size() > 1;
             const std::size_t first = out[o].size();

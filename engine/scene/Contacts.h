@@ -27,9 +27,12 @@ namespace rad {
 
 // Splits the polygons (per object) of objects whose `split` is set along
 // the segments where polygons of other such objects meet them from their
-// front side; returns how many polygons were split. The pieces are convex
-// polygons of at most four vertices, texture coordinates following.
+// front side; returns how many polygons were split. A split that would
+// leave a side narrower than `narrowest` across the segment is not made
+// (books on a shelf: slots of a few millimetres are left to refinement).
+// The pieces are convex polygons of at most four vertices, texture
+// coordinates following.
 std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
-                            std::span<const char> split);
+                            std::span<const char> split, double narrowest = 0.0);
 
 }  // namespace rad

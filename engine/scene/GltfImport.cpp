@@ -1,4 +1,5 @@
 #include "radiosity/Gltf.h"
+#include "radiosity/Settings.h"
 
 #include <tiny_gltf.h>
 
@@ -1245,7 +1246,13 @@ class Importer {
             note(std::to_string(buried.polygonsCut) + " polygon(s) of static objects cut where they pass into closed "
                  "solids; " + area(total) + " inside them left out, neither lit nor drawn (most: " + most + ")");
         }
-        const std::size_t splitAtContact = splitAtContacts(polygons, cut);
+        // No split leaves a side narrower than two elements at the default
+        // area threshold (of the whole scene: a room's may be finer).
+        double area = 0.0;
+        for (const std::vector<Polygon>& object : polygons)
+            for (const Polygon& p : object) area += p.area();
+        const std::size_t splitAtContact =
+            splitAtContacts(polygons, cut, 2.0 * std::sqrt(kDefaultMinAreaShare * area));
         notes_.contactPolygons += splitAtContact;
         if (splitAtContact > 0)
             note(std::to_string(splitAtContact) +

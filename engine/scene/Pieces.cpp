@@ -115,9 +115,15 @@ PlaneSection planeSection(std::span<const glm::dvec3> corners, const glm::dvec3&
 }
 
 void cutAlong(std::vector<Piece>& pieces, const glm::dvec3& normal, const glm::dvec3& a,
-              const glm::dvec3& b, double tolerance) {
+              const glm::dvec3& b, double tolerance, double narrowest) {
     const glm::dvec3 across = glm::normalize(glm::cross(normal, b - a));
     const glm::dvec4 line(across, glm::dot(across, a));
+    const auto width = [&](const Piece& piece) {
+        double w = 0.0;
+        for (const PieceVertex& v : piece)
+            w = std::max(w, std::abs(glm::dot(across, v.p) - line.w));
+        return w;
+    };
     Piece outer, inner;
     const std::size_t count = pieces.size();
     for (std::size_t i = 0; i < count; ++i) {
@@ -125,6 +131,7 @@ void cutAlong(std::vector<Piece>& pieces, const glm::dvec3& normal, const glm::d
         if (!clipToPiece(pieces[i], normal, p, q, tolerance)) continue;
         split(pieces[i], line, tolerance, outer, inner);
         if (outer.size() < 3 || inner.size() < 3) continue;
+        if (narrowest > 0.0 && std::min(width(outer), width(inner)) < narrowest) continue;
         pieces[i] = outer;
         pieces.push_back(inner);
     }

@@ -53,9 +53,10 @@ PlaneSection planeSection(std::span<const glm::dvec3> corners, const glm::dvec3&
                           double offset, double tolerance);
 
 // Cuts each of `pieces` that the segment [a, b] runs through along the
-// segment's line (in the plane of the pieces, facing `normal`).
+// segment's line (in the plane of the pieces, facing `normal`), unless a
+// side would be narrower than `narrowest` across the line.
 void cutAlong(std::vector<Piece>& pieces, const glm::dvec3& normal, const glm::dvec3& a,
-              const glm::dvec3& b, double tolerance);
+              const glm::dvec3& b, double tolerance, double narrowest = 0.0);
 
 // Appends `pieces` to `out` as polygons like `polygon` (its material and
 // object): a piece of more than four vertices as a fan of quads (and a

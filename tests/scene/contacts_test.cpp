@@ -100,6 +100,11 @@ TEST(Contacts, SmallContactsOwnPartsAndDynamicObjectsSplitNothing) {
         auto polygons = floorAndSheet(1.5, 0.0, 3.0);
         EXPECT_EQ(splitAtContacts(polygons, std::vector<char>{1, 0}), 0u);
     }
+    {  // a side narrower than asked (a book 5 cm from a shelf's end)
+        auto polygons = floorAndSheet(0.05, 0.0, 3.0);
+        EXPECT_EQ(splitAtContacts(polygons, std::vector<char>{1, 1}, 0.1), 0u);
+        EXPECT_EQ(splitAtContacts(polygons, std::vector<char>{1, 1}, 0.04), 1u);
+    }
 }
 
 // A box partition standing across the floor: its footprint becomes a piece

@@ -26,10 +26,14 @@ struct SolveSettings {
 // shipped rooms): a scene whose points see less is taken as several rooms.
 inline constexpr double kRoomShare = 0.2;
 
+// The default area threshold A_e: this share of the scene's polygon area,
+// so that it suits any scene scale.
+inline constexpr double kDefaultMinAreaShare = 2e-5;
+
 struct EngineSettings {
     double epsilon = 5e-5;  // BF threshold, relative to the total emitted power
-    // Area threshold A_e in square metres; 0 picks 2e-5 of the scene's total
-    // polygon area, so that the default suits any scene scale.
+    // Area threshold A_e in square metres; 0 picks kDefaultMinAreaShare of
+    // the scene's total polygon area.
     double minArea = 0.0;
     // Thresholds relative to a room, not to the whole scene: where a point
     // sees less than kRoomShare of the scene's area (measureSurroundings, in
