@@ -1266,9 +1266,10 @@ class Importer {
         scene.lights = std::move(lights_);
         for (std::size_t i = 0; i < pending_.size(); ++i) {
             if (polygons[i].empty()) {
-                note(pending_[i].item + (duplicates[i] > 0 ? ": every polygon repeats an earlier one in place, "
-                                                             "not imported as an object"
-                                                           : ": no polygons, not imported as an object"));
+                note(pending_[i].item +
+                     (duplicates[i] > 0          ? ": every polygon repeats an earlier one in place, not imported as an object"
+                      : buried.areaLeftOut[i] > 0 ? ": every polygon lies inside closed solids, not imported as an object"
+                                                  : ": no polygons, not imported as an object"));
                 continue;
             }
             Object object = pending_[i].object;

@@ -226,5 +226,25 @@ TEST(Buried, DynamicBoxesAndLitBoxesCutNothing) {
     }
 }
 
+// A static box wholly inside a static slab: nothing of it can be seen or
+// lit, so it is not imported, and the note says why.
+TEST(Buried, AnObjectWhollyInsideASolidIsNotImportedAndSaysWhy) {
+    test::GltfBuilder g;
+    const int grey = g.addGrey("grey", 0.5);
+    g.addNode("\"name\":\"slab\",\"mesh\":" +
+              std::to_string(g.addBoxMesh("slab", {{V(0, -1, 0), V(4, 0, 4)}}, grey)));
+    g.addNode("\"name\":\"inside\",\"mesh\":" +
+              std::to_string(g.addBoxMesh("inside", {{V(1, -0.8, 1), V(2, -0.2, 2)}}, grey)));
+    const test::TempDir dir;
+    ImportNotes notes;
+    const Scene scene = loadGltf(g.writeEmbedded(dir).string(), &notes);
+    EXPECT_FALSE(scene.findObject("inside").has_value());
+    bool said = false;
+    for (const std::string& line : notes.lines)
+        said = said || (line.find("'inside'") != std::string::npos &&
+                        line.find("every polygon lies inside closed solids") != std::string::npos);
+    EXPECT_TRUE(said);
+}
+
 }  // namespace
 }  // namespace rad
