@@ -33,10 +33,6 @@ std::vector<std::pair<glm::dvec3, glm::dvec3>> crossings(const Piece& polygon,
     return found;
 }
 
-}  // namespace
-
-namespace {
-
 // Whether `p` lies on the triangle `t`, within `tolerance`.
 bool onTriangle(const std::array<glm::dvec3, 3>& t, const glm::dvec3& p, double tolerance) {
     const glm::dvec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
@@ -95,12 +91,8 @@ std::vector<ClosedSolid> closedSolids(std::span<const std::array<glm::dvec3, 3>>
         }
         const glm::dvec3 extent = solid.box.extent();
         const double size = glm::length(extent);
-        // Positions come as float32: allow for their rounding, and for the
-        // solid's own size.
-        const glm::dvec3 reach = glm::max(glm::abs(solid.box.lo), glm::abs(solid.box.hi));
-        const double far = std::max({reach.x, reach.y, reach.z});
         const double thinnest = std::min({extent.x, extent.y, extent.z});
-        solid.tolerance = 1e-6 * size + 1e-7 * far;
+        solid.tolerance = positionTolerance(solid.box);
         // Faces out, around a volume (not a sheet closed on itself).
         const glm::dvec3 o = solid.triangles.front()[0];
         double volume = 0.0;

@@ -39,11 +39,7 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
     for (std::size_t r = 0; r < refs.size(); ++r) {
         const Polygon& p = polygons[refs[r].object][refs[r].index];
         const Aabb& box = boxes[r];
-        const glm::dvec3 reach = glm::max(glm::abs(box.lo), glm::abs(box.hi));
-        // Positions come as float32: allow for their rounding, and for the
-        // polygon's own size.
-        const double tolerance = tolerances[r] =
-            1e-6 * glm::length(box.extent()) + 1e-7 * std::max({reach.x, reach.y, reach.z});
+        const double tolerance = tolerances[r] = positionTolerance(box);
         const glm::dvec3 normal = p.normal();
         const double offset = glm::dot(normal, p.vertices[0]);
         Aabb around = box;

@@ -40,6 +40,11 @@ Aabb boxOf(const Polygon& polygon) {
     return box;
 }
 
+double positionTolerance(const Aabb& box) {
+    const glm::dvec3 reach = glm::max(glm::abs(box.lo), glm::abs(box.hi));
+    return 1e-6 * glm::length(box.extent()) + 1e-7 * std::max({reach.x, reach.y, reach.z});
+}
+
 double pieceArea(const Piece& piece) {
     glm::dvec3 sum(0.0);
     for (std::size_t i = 1; i + 1 < piece.size(); ++i)

@@ -25,6 +25,10 @@ using Piece = std::vector<PieceVertex>;  // convex, counter-clockwise seen from 
 
 Piece pieceOf(const Polygon& polygon);
 Aabb boxOf(const Polygon& polygon);
+// How near a point must be to count as on a plane or line of what fills
+// `box`: positions come as float32, so allow for their rounding where the
+// box lies, and for the box's own size.
+double positionTolerance(const Aabb& box);
 double pieceArea(const Piece& piece);
 
 // Splits `piece` by a plane into the part on its outer side (signed
