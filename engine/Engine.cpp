@@ -43,11 +43,15 @@ constexpr double kGuardWarningThreshold = 0.05;
 constexpr double kBackFaceWarningShare = 0.05;
 constexpr double kRoundTolerance = 3e-3;
 // The share of a frame's time (after the move and the mesh's fixed part)
-// the first traversal may take: the rest goes to the link updates it finds.
-// At three quarters, `office`'s chair at 60 fps (8 ms traversals in frames
-// of 16.7 ms) spent 262 link updates in 27 frames, which ran 12% over
-// (median 18.6 ms), as far from a full solve as frames that wait.
+// the first traversal may take and leave the rest to the link updates it
+// finds. One that takes more, up to kTraversalMost, still runs, and the next
+// move's frame catches up on what it found instead of traversing
+// (State::catchUpFirst); a longer one defers the move. (Letting the
+// traversal take three quarters of every frame, `office`'s chair at 60 fps
+// (8 ms traversals in frames of 16.7 ms) spent 262 link updates in 27
+// frames, which ran 12% over, as far from a full solve as frames that wait.)
 constexpr double kTraversalShare = 0.5;
+constexpr double kTraversalMost = 0.8;
 // How far from the scene as loaded, in its sizes, an object or light may be
 // moved. Rays are traced in single precision in that scene's frame
 // (RayCaster::setFrame), and Embree rejects rays past about 1e18 of its
@@ -270,6 +274,15 @@ struct Engine::State {
         glm::dmat4 world{1.0};
     };
     std::map<std::uint32_t, Deferred> deferred;
+    // The last move's traversal took more than kTraversalShare of its
+    // frame, leaving the link updates it found little time: the next move's
+    // frame first updates them (on the clock, as idle time would), with the
+    // objects still where that traversal found them, and then defers its
+    // own move. A drag whose traversal nearly fills a frame so alternates a
+    // frame that finds and one that updates, and the next traversal covers
+    // both moves at once.
+    bool catchUpFirst = false;
+    double lastMoveSeconds = 0.0;  // what the last move took (the catch-up leaves it that time)
     // What the last first traversals took for the same objects moving (the
     // fastest of the last four, from the second on: the first of a drag runs
     // on cold caches): a frame on a deadline that cannot leave the traversal
@@ -604,6 +617,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     SolveStats& st = s.stats;
     s.meshValid = false;
     s.deferred.clear();  // the solve is of the objects where they are
+    s.catchUpFirst = false;
     s.refiner.linkRoot();
     // Punctual lights reach the surfaces through light links, refined once:
     // the light a point gets from them does not depend on the solution.
@@ -851,6 +865,21 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         if (!s.chosen.count(object)) choosingSeconds += setDynamicObject(s.scene.objects[object].name, settings).totalSeconds;
     if (!objects.empty()) s.dynamic = objects.back().first;
 
+    // The last traversal left its frame little time (State::catchUpFirst):
+    // first the link updates it found, with the objects where it found them,
+    // on the clock, leaving the move the time the last one took; this
+    // frame's move is then deferred. The deadline governs, not the budget,
+    // whose fit is of frames that traverse. (A frame that chose an object
+    // caught up in choosing it.)
+    const bool catchingUp =
+        std::exchange(s.catchUpFirst, false) && allowDeferral && settings.deadlineSeconds && choosingSeconds == 0.0;
+    FrameStats caught;
+    if (catchingUp) {
+        UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds);
+        u.budget.reset();
+        caught = s.updater.refinePending(u, false);
+    }
+
     const auto start = std::chrono::steady_clock::now();
     // Where each object's links were last updated: where it starts this
     // frame, or where a deferred move left them.
@@ -915,9 +944,10 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         s.lightChanged(changed);
     }
     const double moveSeconds = secondsSince(start);
+    s.lastMoveSeconds = moveSeconds;
     // A deadline that cannot leave the first traversal the time it last took
-    // within kTraversalShare of the frame (after the move and the mesh's
-    // fixed part): the move is deferred. The objects are drawn where they
+    // within kTraversalMost of the frame (after the move and the mesh's
+    // fixed part), or a frame that caught up: the move is deferred. The objects are drawn where they
     // are, with the light of where their links were last updated, until a
     // frame with the time (or an idle one) updates the links for one move
     // from there. A budget-starved drag so keeps the object's links as they
@@ -932,14 +962,15 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // 135 ms against 39 guessed from the chair's): one that does not fit
     // surely does not.
     const auto traversal = allowDeferral && settings.deadlineSeconds ? s.traversalSeconds(moving) : std::nullopt;
-    if (traversal &&
-        kTraversalShare * (*settings.deadlineSeconds - moveSeconds - choosingSeconds - s.meshCost.model().first) <
-            *traversal) {
+    const double frameLeft = settings.deadlineSeconds ? *settings.deadlineSeconds - moveSeconds - choosingSeconds -
+                                                            caught.totalSeconds - s.meshCost.model().first
+                                                      : 0.0;
+    if (catchingUp || (traversal && kTraversalMost * frameLeft < *traversal)) {
         s.deferred = std::move(from);
-        FrameStats stats;
+        FrameStats stats = caught;
         stats.moveSeconds = moveSeconds;
-        stats.totalSeconds = moveSeconds + choosingSeconds;
-        stats.updateSeconds = choosingSeconds;
+        stats.totalSeconds += moveSeconds + choosingSeconds;
+        stats.updateSeconds += choosingSeconds;
         stats.deferred = s.deferred.size();
         // The estimate: what waits already, and the light the objects' own
         // links carry, in the share of the object's size it has moved (its
@@ -966,6 +997,10 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     s.updater.setObstacles(std::move(obstacles));
     FrameStats stats = s.updater.update(motions, s.forUpdater(settings, moveSeconds + choosingSeconds));
     s.recordTraversal(moving, stats.traversalSeconds);
+    // A frame with no time at all for the traversal has none to catch up
+    // in either: the traversals measured defer the moves that follow.
+    s.catchUpFirst = allowDeferral && settings.deadlineSeconds && frameLeft > 0.0 && stats.stale > 0 &&
+                     stats.traversalSeconds > kTraversalShare * frameLeft;
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();
@@ -983,6 +1018,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
 FrameStats Engine::refinePending(const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("refinePending before solve()");
+    s.catchUpFirst = false;  // idle time catches up
     // A deferred move first: the objects stay where they are, and their
     // links are updated for the move from where they were last updated
     // (its traversal is not deferred again; its link updates keep the

@@ -441,9 +441,9 @@ double LineSpaceUpdate::unsentPowerOf(ElementId e, bool absolute) const {
     return power;
 }
 
-FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
+FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings, bool idle) {
     const auto start = std::chrono::steady_clock::now();
-    idle_ = true;
+    idle_ = idle;
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
@@ -465,7 +465,7 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings) {
     refineFromHeap(heap, stats, left());
     stats.updateSeconds = secondsSince(start);
     const auto t = std::chrono::steady_clock::now();
-    std::vector<ElementId> visited = pushPull(stats);
+    std::vector<ElementId> visited = pushPull(stats, !idle);
     // What catching up changed joins what the last move changed on show.
     recordOverlay(visited, true);
     touch(visited);

@@ -94,8 +94,10 @@ public:
     // stepped at the next followTheLight.
     void setLightScale(double scale);
     // Refines, within the budget, the links a budget left coarse, with no
-    // motion (what an idle viewer does between moves).
-    FrameStats refinePending(const UpdateSettings& settings);
+    // motion (what an idle viewer does between moves). `idle` false: a
+    // frame of a drag that catches up on the clock (Engine::moveObjects),
+    // its first batch and bounce held to the deadline like the rest.
+    FrameStats refinePending(const UpdateSettings& settings, bool idle = true);
     // After a solve: reinstates the p-links the criterion no longer asks for
     // (their source's radiosity fell after they were refined), so that the
     // solution is a fixed point of the traversal's decisions and a move that

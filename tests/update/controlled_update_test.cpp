@@ -320,12 +320,15 @@ TEST(StabilityControlledUpdate, MovesWithoutTimeForTheTraversalWaitAndCoalesce) 
 // judged by the chair's traversals. Before it has a history of its own, its
 // traversal is guessed from its links at the least rate per link measured,
 // and a move whose guess does not fit its deadline waits from the first
-// frame. The deadline here leaves the chair's traversal twice its time:
-// the bookcase's guess (2.3 times the chair's) does not fit, the chair
-// does. (Two and a half times let the bookcase fit once a move no longer
-// measured its polygons' closure again, about 7 ms a move in `office`,
-// whose seams had made it look open; before that, twice deferred the
-// chair in four runs of six.)
+// frame. The deadline here is twice the chair's traversal: the bookcase's
+// guess (2.3 times the chair's) does not fit the four fifths of it a
+// traversal may take (kTraversalMost), the chair's does. (Before a
+// traversal could take more than half of the frame, the deadline was three
+// times the chair's traversal; two and a half let the bookcase fit once a
+// move no longer measured its polygons' closure again, about 7 ms a move in
+// `office`, whose seams had made it look open.) Then the chair in frames its
+// traversal nearly fills: a frame that finds, one that catches up, one that
+// finds.
 TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     Engine engine(test::office(), EngineSettings{});
     ASSERT_TRUE(engine.solve().converged);
@@ -339,7 +342,7 @@ TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     }
     engine.setDynamicObject("bookcase-1");
     UpdateSettings tight;
-    tight.deadlineSeconds = 3.0 * chairTraversal;
+    tight.deadlineSeconds = 2.0 * chairTraversal;
     const FrameStats first =
         engine.moveObjects({{"bookcase-1", translation(V(0.02, 0.0, 0.0)) * placed("bookcase-1")}}, tight);
     EXPECT_EQ(first.deferred, 1u);
@@ -348,14 +351,44 @@ TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     engine.refinePending();  // the bookcase's move is made (and measured)
     const FrameStats chair = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, tight);
     EXPECT_EQ(chair.deferred, 0u);
-    // A frame its traversal would take three fifths of waits too: the
-    // traversal may take only kTraversalShare (1/2) of the frame, the rest is
-    // for the link updates it finds.
+    engine.refinePending();  // what it left stale, if its traversal took more than half
+    // A frame its traversal would take three fifths of: the traversal runs
+    // (it may take up to kTraversalMost, 4/5, of the frame), but it leaves
+    // the link updates it found less than the half they are due, so the next
+    // move's frame updates them instead of traversing, with the chair where
+    // they were found, and defers its own move; the frame after that
+    // traverses the chair's way from there.
+    const double least = std::min(chairTraversal, chair.traversalSeconds);
     UpdateSettings filled;
-    filled.deadlineSeconds = 1.65 * std::min(chairTraversal, chair.traversalSeconds);  // the least measured
-    const FrameStats waits = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
+    filled.deadlineSeconds = 1.65 * least;
+    const FrameStats finds = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
+    EXPECT_EQ(finds.deferred, 0u);
+    EXPECT_GT(finds.shaftTests, 0u);
+    EXPECT_GT(finds.stale, 0u);
+    const FrameStats updates =
+        engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
+    EXPECT_EQ(updates.deferred, 1u);
+    EXPECT_EQ(updates.shaftTests, 0u);
+    EXPECT_GT(updates.spent, 0u);
+    EXPECT_LT(updates.stale, finds.stale);
+    const FrameStats findsAgain =
+        engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
+    EXPECT_EQ(findsAgain.deferred, 0u);
+    EXPECT_GT(findsAgain.shaftTests, 0u);
+    // A frame it would take more than four fifths of waits.
+    UpdateSettings short_;
+    short_.deadlineSeconds = 1.1 * least;
+    const FrameStats waits = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, short_);
     EXPECT_EQ(waits.deferred, 1u);
     EXPECT_EQ(waits.shaftTests, 0u);
+    // Idle time makes the waiting move and the links still stale: line
+    // space is covered once, and nothing is left waiting.
+    FrameStats idle = engine.refinePending();
+    for (int frame = 0; frame < 10 && idle.stale + idle.pending + idle.unsent > 0; ++frame) idle = engine.refinePending();
+    EXPECT_EQ(idle.stale + idle.pending + idle.unsent, 0u);
+    EXPECT_EQ(idle.estimatedError, 0.0);
+    const CoverageResult c = checkCoverage(engine, 5u, 100);
+    EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
 }
 
 // The live estimate is in the units of the measured error (the rms
