@@ -43,14 +43,14 @@ constexpr double kGuardWarningThreshold = 0.05;
 constexpr double kBackFaceWarningShare = 0.05;
 constexpr double kRoundTolerance = 3e-3;
 // The share of a frame's time (after the move and the mesh's fixed part)
-// the first traversal may take and leave the rest to the link updates it
-// finds. One that takes more, up to kTraversalMost, still runs, and the next
-// move's frame catches up on what it found instead of traversing
-// (State::catchUpFirst); a longer one defers the move. (Letting the
-// traversal take three quarters of every frame, `office`'s chair at 60 fps
-// (8 ms traversals in frames of 16.7 ms) spent 262 link updates in 27
-// frames, which ran 12% over, as far from a full solve as frames that wait.)
-constexpr double kTraversalShare = 0.5;
+// the first traversal may be expected to take; one expected to take more
+// defers the move. Beyond LineSpaceUpdate::kTraversalShare (a half) the
+// traversal's frame only finds, and the next move's frame catches up on
+// what it found (State::catchUpFirst). (Letting the traversal take three
+// quarters of every frame and update what it could in the rest, `office`'s
+// chair at 60 fps (8 ms traversals in frames of 16.7 ms) spent 262 link
+// updates in 27 frames, which ran 12% over, as far from a full solve as
+// frames that wait.)
 constexpr double kTraversalMost = 0.8;
 // How far from the scene as loaded, in its sizes, an object or light may be
 // moved. Rays are traced in single precision in that scene's frame
@@ -274,13 +274,10 @@ struct Engine::State {
         glm::dmat4 world{1.0};
     };
     std::map<std::uint32_t, Deferred> deferred;
-    // The last move's traversal took more than kTraversalShare of its
-    // frame, leaving the link updates it found little time: the next move's
-    // frame first updates them (on the clock, as idle time would), with the
-    // objects still where that traversal found them, and then defers its
-    // own move. A drag whose traversal nearly fills a frame so alternates a
-    // frame that finds and one that updates, and the next traversal covers
-    // both moves at once.
+    // The last move's frame only found (LineSpaceUpdate::foundOnly): the
+    // next move's frame first updates the links it found (on the clock, as
+    // idle time would), with the objects still where it found them, and then
+    // defers its own move; the traversal after it covers both moves.
     bool catchUpFirst = false;
     double lastMoveSeconds = 0.0;  // what the last move took (the catch-up leaves it that time)
     // What the last first traversals took for the same objects moving (the
@@ -865,8 +862,8 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         if (!s.chosen.count(object)) choosingSeconds += setDynamicObject(s.scene.objects[object].name, settings).totalSeconds;
     if (!objects.empty()) s.dynamic = objects.back().first;
 
-    // The last traversal left its frame little time (State::catchUpFirst):
-    // first the link updates it found, with the objects where it found them,
+    // The last move's frame only found (State::catchUpFirst): first the
+    // link updates it found, with the objects where it found them,
     // on the clock, leaving the move the time the last one took; this
     // frame's move is then deferred. The deadline governs, not the budget,
     // whose fit is of frames that traverse. (A frame that chose an object
@@ -997,10 +994,9 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     s.updater.setObstacles(std::move(obstacles));
     FrameStats stats = s.updater.update(motions, s.forUpdater(settings, moveSeconds + choosingSeconds));
     s.recordTraversal(moving, stats.traversalSeconds);
-    // A frame with no time at all for the traversal has none to catch up
-    // in either: the traversals measured defer the moves that follow.
-    s.catchUpFirst = allowDeferral && settings.deadlineSeconds && frameLeft > 0.0 && stats.stale > 0 &&
-                     stats.traversalSeconds > kTraversalShare * frameLeft;
+    // (A frame with no time at all has none to catch up in either: the
+    // traversals measured defer the moves that follow.)
+    s.catchUpFirst = s.updater.foundOnly() && frameLeft > 0.0;
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();
@@ -1010,8 +1006,9 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // fill what the frame has left, so that frames that spent few link
     // updates take as long as those that spent many, and a fit of the whole
     // frame read the budget as fixed cost and held it at 0 (`office` at 30
-    // fps: 0 to 228 link updates a frame while the stale links grew).
-    s.budget.record(stats.spent, stats.totalSeconds - stats.bounceSeconds);
+    // fps: 0 to 228 link updates a frame while the stale links grew). A
+    // frame that only found says nothing of what link updates cost.
+    if (!s.updater.foundOnly()) s.budget.record(stats.spent, stats.totalSeconds - stats.bounceSeconds);
     return stats;
 }
 

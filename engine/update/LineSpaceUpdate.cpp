@@ -27,7 +27,7 @@ bool LineSpaceUpdate::movedEnd(ElementId e) const {
 FrameStats LineSpaceUpdate::update(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings) {
     layersChanged_ = false;
     fresh_.reset();
-    return run(motions, settings);
+    return run(motions, settings, true);
 }
 
 FrameStats LineSpaceUpdate::chooseObject(const Aabb& box, const IndexRange& range, bool relinked,
@@ -36,13 +36,14 @@ FrameStats LineSpaceUpdate::chooseObject(const Aabb& box, const IndexRange& rang
     meanReflectance_.reset();  // polygons may have moved in the tree
     unsent_.forget();
     fresh_ = relinked ? std::optional(range) : std::nullopt;
-    FrameStats stats = run({{box, box, range}}, settings);
+    FrameStats stats = run({{box, box, range}}, settings, false);
     layersChanged_ = false;
     fresh_.reset();
     return stats;
 }
 
-FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings) {
+FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings,
+                                bool mayFindOnly) {
     const auto start = std::chrono::steady_clock::now();
     response_.clear();  // links change: what an edit sent no longer scales
     FrameStats stats;
@@ -68,6 +69,15 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const 
     findModifiedLinks();
     stats.traversalSeconds = secondsSince(start);
     stats.shaftTests = shaftTests_;
+    foundOnly_ = mayFindOnly && deadline_ && stats.traversalSeconds >
+                                  kTraversalShare * (std::chrono::duration<double>(*deadline_ - start).count() -
+                                                     tail_.seconds(0));
+    if (foundOnly_) {
+        defer(0);  // the root's visit and all below it
+        obstacles_.clear();
+        finish(stats, start);
+        return stats;
+    }
     startLinkUpdates();
 
     // 2. The second spends the budget top-down (Fig. 8): link updates,
@@ -444,6 +454,7 @@ double LineSpaceUpdate::unsentPowerOf(ElementId e, bool absolute) const {
 FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings, bool idle) {
     const auto start = std::chrono::steady_clock::now();
     idle_ = idle;
+    foundOnly_ = false;
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
@@ -466,8 +477,9 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings, bool i
     stats.updateSeconds = secondsSince(start);
     const auto t = std::chrono::steady_clock::now();
     std::vector<ElementId> visited = pushPull(stats, !idle);
-    // What catching up changed joins what the last move changed on show.
-    recordOverlay(visited, true);
+    // What idle time changed joins what the last move changed on show; a
+    // frame that catches up on a move shows what it changed.
+    recordOverlay(visited, idle);
     touch(visited);
     bounce(std::move(visited), settings, stats);
     followTheLight(settings, stats, left());

@@ -93,6 +93,17 @@ public:
     // refinement, as a solve of it would. When it changed, every element is
     // stepped at the next followTheLight.
     void setLightScale(double scale);
+    // On a deadline, the share of the frame (what the updater was given of
+    // it, less the mesh's fixed part) the first traversal may take and
+    // leave the rest to the link updates it finds. A traversal that takes
+    // more leaves its frame nothing but what it found: every link found
+    // waits, stale, with the push, the bounces and following the light, and
+    // `foundOnly()` says so until the next frame; the engine's next move
+    // then catches up on them (refinePending on the clock) instead of
+    // traversing. A drag whose traversal nearly fills a frame so alternates
+    // a frame that finds and one that updates.
+    static constexpr double kTraversalShare = 0.5;
+    bool foundOnly() const { return foundOnly_; }
     // Refines, within the budget, the links a budget left coarse, with no
     // motion (what an idle viewer does between moves). `idle` false: a
     // frame of a drag that catches up on the clock (Engine::moveObjects),
@@ -364,7 +375,9 @@ private:
     // Whether an element lies in, or holds, a moving object's cluster.
     bool movedEnd(ElementId e) const;
     std::vector<Aabb> obstacles_;
-    FrameStats run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings);
+    // A frame of update or chooseObject; `mayFindOnly`: a move's, which may
+    // leave what it found to the next frame (kTraversalShare).
+    FrameStats run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings, bool mayFindOnly);
     // Set by chooseObject for its frame: the layers changed, and the object
     // whose links are new, if they are.
     bool layersChanged_ = false;
@@ -406,6 +419,7 @@ private:
     // and its first bounce whatever the clock says, so that idle time
     // converges even on a deadline shorter than they take.
     bool idle_ = false;
+    bool foundOnly_ = false;  // the last move's frame only found (kTraversalShare)
     // A move's frame (run): its bounces send only the changes above
     // UpdateSettings::moveBounceThreshold.
     bool moving_ = false;
