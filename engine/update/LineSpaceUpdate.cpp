@@ -69,11 +69,14 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const 
     findModifiedLinks();
     stats.traversalSeconds = secondsSince(start);
     stats.shaftTests = shaftTests_;
-    foundOnly_ = mayFindOnly && deadline_ && stats.traversalSeconds >
-                                  kTraversalShare * (std::chrono::duration<double>(*deadline_ - start).count() -
-                                                     tail_.seconds(0));
+    foundOnly_ = mayFindOnly && !motions.empty() && deadline_ &&
+                 stats.traversalSeconds > kTraversalShare * (std::chrono::duration<double>(*deadline_ - start).count() -
+                                                             tail_.seconds(0));
     if (foundOnly_) {
         defer(0);  // the root's visit and all below it
+        // What else is dirty (a moved light's direct light) is pushed as the
+        // clock allows; the rest waits, counted in the estimate.
+        touch(pushPull(stats, true));
         obstacles_.clear();
         finish(stats, start);
         return stats;
