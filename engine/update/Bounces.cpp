@@ -107,7 +107,9 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
                 senders.emplace_back(e, n);
                 links += n;
             }
-        const double share = idle_ && b == 0 ? 1.0 : shareThatFits(stats.changedLeaves, bounceSecondsPerLink_ * double(links));
+        double share = idle_ && b == 0 ? 1.0 : shareThatFits(stats.changedLeaves, bounceSecondsPerLink_ * double(links));
+        if (share < 1.0 && cutBounceSecondsPerLink_ > 0.0)
+            share = shareThatFits(stats.changedLeaves, cutBounceSecondsPerLink_ * double(links));
         if (share < kLeastShare) {
             for (const auto& [e, n] : senders) joinUnsent(e, n);
             break;
@@ -183,7 +185,8 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
         // Its cost per link, the meshing of the leaves it changed included;
         // a cheap bounce lowers the expectation only by degrees.
         const double took = secondsSince(began) + tail_.seconds(stats.changedLeaves - leavesBefore) - tail_.seconds(0);
-        if (links > 0) bounceSecondsPerLink_ = std::max(took / double(links), 0.75 * bounceSecondsPerLink_);
+        double& rate = share < 1.0 ? cutBounceSecondsPerLink_ : bounceSecondsPerLink_;
+        if (links > 0) rate = std::max(took / double(links), 0.75 * rate);
     }
     // On a deadline, the push of what waits is made only in the share that
     // fits (a cluster's push re-meshes all of its members), largest changes
