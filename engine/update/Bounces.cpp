@@ -108,8 +108,11 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
                 links += n;
             }
         double share = idle_ && b == 0 ? 1.0 : shareThatFits(stats.changedLeaves, bounceSecondsPerLink_ * double(links));
-        if (share < 1.0 && cutBounceSecondsPerLink_ > 0.0)
-            share = shareThatFits(stats.changedLeaves, cutBounceSecondsPerLink_ * double(links));
+        if (share < 1.0) {
+            const double rate = cutBounceSecondsPerLink_ > 0.0 ? cutBounceSecondsPerLink_
+                                                               : kCutBounceGuess * bounceSecondsPerLink_;
+            share = shareThatFits(stats.changedLeaves, rate * double(links));
+        }
         if (share < kLeastShare) {
             for (const auto& [e, n] : senders) joinUnsent(e, n);
             break;

@@ -412,9 +412,12 @@ private:
     // whose links nearly all carry a transfer, where a whole bounce's links
     // mostly fall under the threshold (in `office`, 48 ns a link against
     // 17, about 60 ns a transfer in both). Until a cut bounce is measured,
-    // it is expected at the whole bounce's rate.
+    // it is expected at kCutBounceGuess times the whole bounce's rate (at
+    // the whole rate, the first cut bounce of `office`'s chair dragged at 60
+    // fps was expected to take 0.9 to 1.3 ms and took 2.9 to 4.0 ms).
     double bounceSecondsPerLink_ = 0.0;
     double cutBounceSecondsPerLink_ = 0.0;
+    static constexpr double kCutBounceGuess = 3.0;
     // What a partial push-pull took per element it visited, measured on
     // pushes of at least kPushSample elements.
     double pushSecondsPerElement_ = 0.0;
