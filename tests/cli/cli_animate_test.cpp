@@ -157,7 +157,14 @@ TEST(CliAnimate, BudgetAndTargetFrameRateAreReported) {
     for (const json& frame : report["frames"]) {
         ASSERT_TRUE(jsonAt(frame, "/target_seconds").is_number());
         EXPECT_NEAR(frame["target_seconds"].get<double>(), 1.0 / 30.0, 1e-12);
-        // The budget comes from the frame rate: a count, not "no limit".
+        // The budget comes from the frame rate: a count, not "no limit";
+        // except in a frame that caught up on what the last frame's
+        // traversal found (a slow machine's), which the deadline alone
+        // governs, and which then deferred its own move.
+        if (jsonAt(frame, "/budget").is_null()) {
+            EXPECT_EQ(jsonAt(frame, "/deferred"), 1);
+            continue;
+        }
         EXPECT_TRUE(jsonAt(frame, "/budget").is_number_integer());
         EXPECT_GE(jsonAt(frame, "/budget"), 0);
     }
