@@ -52,6 +52,14 @@ constexpr double kRoundTolerance = 3e-3;
 // updates in 27 frames, which ran 12% over, as far from a full solve as
 // frames that wait.)
 constexpr double kTraversalMost = 0.8;
+// A drag deferred for want of time for the traversal measures it again at
+// every kRemeasureAfter-th move, when the traversal it remembers (the
+// fastest of its last four) is within kRemeasureWithin times what the frame
+// allows it: otherwise one slow moment, remembered, deferred the rest of
+// the drag (no deferred move is measured). A traversal that never fits
+// (a bookcase's 135 ms in a 33 ms frame) is not tried again.
+constexpr int kRemeasureAfter = 16;
+constexpr double kRemeasureWithin = 1.5;
 // How far from the scene as loaded, in its sizes, an object or light may be
 // moved. Rays are traced in single precision in that scene's frame
 // (RayCaster::setFrame), and Embree rejects rays past about 1e18 of its
@@ -279,6 +287,7 @@ struct Engine::State {
     // idle time would), with the objects still where it found them, and then
     // defers its own move; the traversal after it covers both moves.
     bool catchUpFirst = false;
+    int deferredInARow = 0;  // moves deferred for want of time for the traversal (kRemeasureAfter)
     double lastMoveSeconds = 0.0;  // what the last move took (the catch-up leaves it that time)
     // What the last first traversals took for the same objects moving (the
     // fastest of the last four, from the second on: the first of a drag runs
@@ -615,6 +624,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     s.meshValid = false;
     s.deferred.clear();  // the solve is of the objects where they are
     s.catchUpFirst = false;
+    s.deferredInARow = 0;
     s.refiner.linkRoot();
     // Punctual lights reach the surfaces through light links, refined once:
     // the light a point gets from them does not depend on the solution.
@@ -962,7 +972,11 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     const double frameLeft = settings.deadlineSeconds ? *settings.deadlineSeconds - moveSeconds - choosingSeconds -
                                                             caught.totalSeconds - s.meshCost.model().first
                                                       : 0.0;
-    if (catchingUp || (traversal && kTraversalMost * frameLeft < *traversal)) {
+    bool noTime = !catchingUp && traversal && kTraversalMost * frameLeft < *traversal;
+    if (noTime && ++s.deferredInARow >= kRemeasureAfter && *traversal < kRemeasureWithin * kTraversalMost * frameLeft)
+        noTime = false;  // measured again
+    if (!catchingUp && !noTime) s.deferredInARow = 0;
+    if (catchingUp || noTime) {
         s.deferred = std::move(from);
         FrameStats stats = caught;
         stats.moveSeconds = moveSeconds;
