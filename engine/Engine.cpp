@@ -878,8 +878,8 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // frame's move is then deferred. The deadline governs, not the budget,
     // whose fit is of frames that traverse. (A frame that chose an object
     // caught up in choosing it.)
-    const bool catchingUp =
-        std::exchange(s.catchUpFirst, false) && allowDeferral && settings.deadlineSeconds && choosingSeconds == 0.0;
+    const bool catchingUp = std::exchange(s.catchUpFirst, false) && allowDeferral &&
+                            settings.deadlineSeconds && choosingSeconds == 0.0;
     FrameStats caught;
     if (catchingUp) {
         UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds);
@@ -954,12 +954,13 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     s.lastMoveSeconds = moveSeconds;
     // A deadline that cannot leave the first traversal the time it last took
     // within kTraversalMost of the frame (after the move and the mesh's
-    // fixed part), or a frame that caught up: the move is deferred. The objects are drawn where they
-    // are, with the light of where their links were last updated, until a
-    // frame with the time (or an idle one) updates the links for one move
-    // from there. A budget-starved drag so keeps the object's links as they
-    // were, and its frames short. (A traversal that left the rest of the
-    // frame too little time updated nothing: at 60 fps in `office`, frames
+    // fixed part), or a frame that caught up: the move is deferred. The
+    // objects are drawn where they are, with the light of where their links
+    // were last updated, until a frame with the time (or an idle one)
+    // updates the links for one move from there. A budget-starved drag so
+    // keeps the object's links as they were, and its frames short. (A
+    // traversal that left the rest of the frame too little time updated
+    // nothing: at 60 fps in `office`, frames
     // of 15 ms traversals that spent no link update and ran 20% over,
     // until the traversals measured pushed the estimate past the frame.)
     std::vector<std::uint32_t> moving;
@@ -969,11 +970,13 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // 135 ms against 39 guessed from the chair's): one that does not fit
     // surely does not.
     const auto traversal = allowDeferral && settings.deadlineSeconds ? s.traversalSeconds(moving) : std::nullopt;
-    const double frameLeft = settings.deadlineSeconds ? *settings.deadlineSeconds - moveSeconds - choosingSeconds -
-                                                            caught.totalSeconds - s.meshCost.model().first
-                                                      : 0.0;
+    const double frameLeft = settings.deadlineSeconds
+                                 ? *settings.deadlineSeconds - moveSeconds - choosingSeconds -
+                                       caught.totalSeconds - s.meshCost.model().first
+                                 : 0.0;
     bool noTime = !catchingUp && traversal && kTraversalMost * frameLeft < *traversal;
-    if (noTime && ++s.deferredInARow >= kRemeasureAfter && *traversal < kRemeasureWithin * kTraversalMost * frameLeft)
+    if (noTime && ++s.deferredInARow >= kRemeasureAfter &&
+        *traversal < kRemeasureWithin * kTraversalMost * frameLeft)
         noTime = false;  // measured again
     if (!catchingUp && !noTime) s.deferredInARow = 0;
     if (catchingUp || noTime) {
@@ -1022,7 +1025,8 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // frame read the budget as fixed cost and held it at 0 (`office` at 30
     // fps: 0 to 228 link updates a frame while the stale links grew). A
     // frame that only found says nothing of what link updates cost.
-    if (!s.updater.foundOnly()) s.budget.record(stats.spent, stats.totalSeconds - stats.bounceSeconds);
+    if (!s.updater.foundOnly())
+        s.budget.record(stats.spent, stats.totalSeconds - stats.bounceSeconds);
     return stats;
 }
 

@@ -107,10 +107,13 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
                 senders.emplace_back(e, n);
                 links += n;
             }
-        double share = idle_ && b == 0 ? 1.0 : shareThatFits(stats.changedLeaves, bounceSecondsPerLink_ * double(links));
+        double share = idle_ && b == 0 ? 1.0
+                                       : shareThatFits(stats.changedLeaves,
+                                                       bounceSecondsPerLink_ * double(links));
         if (share < 1.0) {
-            const double rate = cutBounceSecondsPerLink_ > 0.0 ? cutBounceSecondsPerLink_
-                                                               : kCutBounceGuess * bounceSecondsPerLink_;
+            const double rate = cutBounceSecondsPerLink_ > 0.0
+                                    ? cutBounceSecondsPerLink_
+                                    : kCutBounceGuess * bounceSecondsPerLink_;
             share = shareThatFits(stats.changedLeaves, rate * double(links));
         }
         if (share < kLeastShare) {

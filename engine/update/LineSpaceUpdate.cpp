@@ -42,8 +42,8 @@ FrameStats LineSpaceUpdate::chooseObject(const Aabb& box, const IndexRange& rang
     return stats;
 }
 
-FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings,
-                                bool mayFindOnly) {
+FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions,
+                                const UpdateSettings& settings, bool mayFindOnly) {
     const auto start = std::chrono::steady_clock::now();
     response_.clear();  // links change: what an edit sent no longer scales
     FrameStats stats;
@@ -70,8 +70,9 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions, const 
     stats.traversalSeconds = secondsSince(start);
     stats.shaftTests = shaftTests_;
     foundOnly_ = mayFindOnly && !motions.empty() && deadline_ &&
-                 stats.traversalSeconds > kTraversalShare * (std::chrono::duration<double>(*deadline_ - start).count() -
-                                                             tail_.seconds(0));
+                 stats.traversalSeconds >
+                     kTraversalShare * (std::chrono::duration<double>(*deadline_ - start).count() -
+                                        tail_.seconds(0));
     if (foundOnly_) {
         defer(0);  // the root's visit and all below it
         // What else is dirty (a moved light's direct light) is pushed as the

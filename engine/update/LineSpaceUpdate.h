@@ -377,7 +377,8 @@ private:
     std::vector<Aabb> obstacles_;
     // A frame of update or chooseObject; `mayFindOnly`: a move's, which may
     // leave what it found to the next frame (kTraversalShare).
-    FrameStats run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings, bool mayFindOnly);
+    FrameStats run(const std::vector<ObjectMotion>& motions, const UpdateSettings& settings,
+                   bool mayFindOnly);
     // Set by chooseObject for its frame: the layers changed, and the object
     // whose links are new, if they are.
     bool layersChanged_ = false;

@@ -361,7 +361,8 @@ TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     const double least = std::min(chairTraversal, chair.traversalSeconds);
     UpdateSettings filled;
     filled.deadlineSeconds = 1.65 * least;
-    const FrameStats finds = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
+    const FrameStats finds =
+        engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
     EXPECT_EQ(finds.deferred, 0u);
     EXPECT_GT(finds.shaftTests, 0u);
     EXPECT_GT(finds.stale, 0u);
@@ -378,7 +379,8 @@ TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     // A frame it would take more than four fifths of waits.
     UpdateSettings short_;
     short_.deadlineSeconds = 1.1 * least;
-    const FrameStats waits = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, short_);
+    const FrameStats waits =
+        engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, short_);
     EXPECT_EQ(waits.deferred, 1u);
     EXPECT_EQ(waits.shaftTests, 0u);
     // A drag deferred for want of time measures its traversal again at
@@ -388,14 +390,17 @@ TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     // the mesh, in frames of about that time.
     double bookcase = INFINITY;
     for (int frame = 0; frame < 2; ++frame)
-        bookcase = std::min(bookcase, engine.moveObjects({{"bookcase-1", translation(V(0.01, 0.0, 0.0)) * placed("bookcase-1")}})
-                                          .traversalSeconds);
+        bookcase =
+            std::min(bookcase, engine
+                                   .moveObjects({{"bookcase-1", translation(V(0.01, 0.0, 0.0)) *
+                                                                    placed("bookcase-1")}})
+                                   .traversalSeconds);
     UpdateSettings near;
     near.deadlineSeconds = 1.05 * bookcase;
     int traversed = 0, deferred = 0;
     for (int move = 0; move < 40; ++move) {
-        const FrameStats f =
-            engine.moveObjects({{"bookcase-1", translation(V(0.005, 0.0, 0.0)) * placed("bookcase-1")}}, near);
+        const FrameStats f = engine.moveObjects(
+            {{"bookcase-1", translation(V(0.005, 0.0, 0.0)) * placed("bookcase-1")}}, near);
         traversed += f.shaftTests > 0;
         deferred += f.deferred > 0 && f.spent == 0;
     }
@@ -405,7 +410,8 @@ TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
     // Idle time makes the waiting move and the links still stale: line
     // space is covered once, and nothing is left waiting.
     FrameStats idle = engine.refinePending();
-    for (int frame = 0; frame < 10 && idle.stale + idle.pending + idle.unsent > 0; ++frame) idle = engine.refinePending();
+    for (int frame = 0; frame < 10 && idle.stale + idle.pending + idle.unsent > 0; ++frame)
+        idle = engine.refinePending();
     EXPECT_EQ(idle.stale + idle.pending + idle.unsent, 0u);
     EXPECT_EQ(idle.estimatedError, 0.0);
     const CoverageResult c = checkCoverage(engine, 5u, 100);
