@@ -974,9 +974,10 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
                                  ? *settings.deadlineSeconds - moveSeconds - choosingSeconds -
                                        caught.totalSeconds - s.meshCost.model().first
                                  : 0.0;
-    bool noTime = !catchingUp && traversal && kTraversalMost * frameLeft < *traversal;
+    const double remembered = traversal.value_or(0.0);
+    bool noTime = !catchingUp && traversal.has_value() && kTraversalMost * frameLeft < remembered;
     if (noTime && ++s.deferredInARow >= kRemeasureAfter &&
-        *traversal < kRemeasureWithin * kTraversalMost * frameLeft)
+        remembered < kRemeasureWithin * kTraversalMost * frameLeft)
         noTime = false;  // measured again
     if (!catchingUp && !noTime) s.deferredInARow = 0;
     if (catchingUp || noTime) {
