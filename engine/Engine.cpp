@@ -983,6 +983,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     if (catchingUp || noTime) {
         s.deferred = std::move(from);
         FrameStats stats = caught;
+        stats.caughtUp = catchingUp;
         stats.moveSeconds = moveSeconds;
         stats.totalSeconds += moveSeconds + choosingSeconds;
         stats.updateSeconds += choosingSeconds;
@@ -1015,6 +1016,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // (A frame with no time at all has none to catch up in either: the
     // traversals measured defer the moves that follow.)
     s.catchUpFirst = s.updater.foundOnly() && frameLeft > 0.0;
+    stats.foundOnly = s.updater.foundOnly();
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();

@@ -71,6 +71,8 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
         {"stale", st.stale},
         {"unsent", st.unsent},
         {"deferred", st.deferred},
+        {"found_only", st.foundOnly},
+        {"caught_up", st.caughtUp},
         {"unmeshed", st.unmeshed},
         {"finer", st.finer},
         {"estimated_error", st.estimatedError},
@@ -165,10 +167,15 @@ int animate(const AnimateSettings& settings) {
             }
             if (record && f > 0) {
                 const FrameStats& st = record->stats;
+                // What a deadline made of the frame's move, if anything.
+                const char* move = st.foundOnly  ? ", found only (its links wait for the next frame)"
+                                   : st.caughtUp ? ", caught up on the last frame's links, move deferred"
+                                   : st.deferred ? ", move deferred"
+                                                 : "";
                 std::printf("frame %d: %.3f s (traversal %.3f, update %.3f, push-pull %.3f, snapshot %.3f), "
-                            "%zu candidates, %zu refined\n",
+                            "%zu candidates, %zu refined%s\n",
                             f, st.totalSeconds, st.traversalSeconds, st.updateSeconds, st.pushPullSeconds,
-                            st.snapshotSeconds, st.candidates, st.refined);
+                            st.snapshotSeconds, st.candidates, st.refined, move);
             }
             if (!s.images) return;
             char name[32];

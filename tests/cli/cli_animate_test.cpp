@@ -161,10 +161,13 @@ TEST(CliAnimate, BudgetAndTargetFrameRateAreReported) {
         // except in a frame that caught up on what the last frame's
         // traversal found (a slow machine's), which the deadline alone
         // governs, and which then deferred its own move.
+        EXPECT_TRUE(jsonAt(frame, "/found_only").is_boolean());
         if (jsonAt(frame, "/budget").is_null()) {
             EXPECT_EQ(jsonAt(frame, "/deferred"), 1);
+            EXPECT_EQ(jsonAt(frame, "/caught_up"), true);
             continue;
         }
+        EXPECT_EQ(jsonAt(frame, "/caught_up"), false);
         EXPECT_TRUE(jsonAt(frame, "/budget").is_number_integer());
         EXPECT_GE(jsonAt(frame, "/budget"), 0);
     }

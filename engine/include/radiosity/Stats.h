@@ -120,6 +120,11 @@ struct FrameStats {
     std::size_t finer = 0;
     std::size_t unmeshed = 0;          // polygons whose meshing the deadline left for a later frame (drawn with their last light)
     std::size_t deferred = 0;          // objects whose move a deadline left for a later frame (links not yet updated)
+    // On a deadline: the frame's traversal took more than half of it, and
+    // every link it found waits, stale, for the next move's frame, which
+    // catches up on them first (then caughtUp) and defers its own move.
+    bool foundOnly = false;
+    bool caughtUp = false;
     // A live estimate of how far the frame is from what an unlimited update
     // gives, in the units of SolutionError::rms: the power the stale and
     // pending links could still change (each link's potential transfer,
