@@ -282,7 +282,7 @@ struct Engine::State {
         glm::dmat4 world{1.0};
     };
     std::map<std::uint32_t, Deferred> deferred;
-    // The last move's frame only found (LineSpaceUpdate::foundOnly): the
+    // The last move's frame only found (FrameStats::foundOnly): the
     // next move's frame first updates the links it found (on the clock, as
     // idle time would), with the objects still where it found them, and then
     // defers its own move; the traversal after it covers both moves.
@@ -1015,8 +1015,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     s.recordTraversal(moving, stats.traversalSeconds);
     // (A frame with no time at all has none to catch up in either: the
     // traversals measured defer the moves that follow.)
-    s.catchUpFirst = s.updater.foundOnly() && frameLeft > 0.0;
-    stats.foundOnly = s.updater.foundOnly();
+    s.catchUpFirst = stats.foundOnly && frameLeft > 0.0;
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();
@@ -1028,7 +1027,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // frame read the budget as fixed cost and held it at 0 (`office` at 30
     // fps: 0 to 228 link updates a frame while the stale links grew). A
     // frame that only found says nothing of what link updates cost.
-    if (!s.updater.foundOnly())
+    if (!stats.foundOnly)
         s.budget.record(stats.spent, stats.totalSeconds - stats.bounceSeconds);
     return stats;
 }

@@ -69,11 +69,11 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions,
     findModifiedLinks();
     stats.traversalSeconds = secondsSince(start);
     stats.shaftTests = shaftTests_;
-    foundOnly_ = mayFindOnly && !motions.empty() && deadline_ &&
+    stats.foundOnly = mayFindOnly && !motions.empty() && deadline_ &&
                  stats.traversalSeconds >
                      kTraversalShare * (std::chrono::duration<double>(*deadline_ - start).count() -
                                         tail_.seconds(0));
-    if (foundOnly_) {
+    if (stats.foundOnly) {
         defer(0);  // the root's visit and all below it
         // What else is dirty (a moved light's direct light) is pushed as the
         // clock allows; the rest waits, counted in the estimate.
@@ -458,7 +458,6 @@ double LineSpaceUpdate::unsentPowerOf(ElementId e, bool absolute) const {
 FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings, bool idle) {
     const auto start = std::chrono::steady_clock::now();
     idle_ = idle;
-    foundOnly_ = false;
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;

@@ -98,12 +98,11 @@ public:
     // leave the rest to the link updates it finds. A traversal that takes
     // more leaves its frame nothing but what it found: every link found
     // waits, stale, with the push, the bounces and following the light, and
-    // `foundOnly()` says so until the next frame; the engine's next move
+    // FrameStats::foundOnly says so; the engine's next move
     // then catches up on them (refinePending on the clock) instead of
     // traversing. A drag whose traversal nearly fills a frame so alternates
     // a frame that finds and one that updates.
     static constexpr double kTraversalShare = 0.5;
-    bool foundOnly() const { return foundOnly_; }
     // Refines, within the budget, the links a budget left coarse, with no
     // motion (what an idle viewer does between moves). `idle` false: a
     // frame of a drag that catches up on the clock (Engine::moveObjects),
@@ -429,7 +428,6 @@ private:
     // and its first bounce whatever the clock says, so that idle time
     // converges even on a deadline shorter than they take.
     bool idle_ = false;
-    bool foundOnly_ = false;  // the last move's frame only found (kTraversalShare)
     // A move's frame (run): its bounces send only the changes above
     // UpdateSettings::moveBounceThreshold.
     bool moving_ = false;
