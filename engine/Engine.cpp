@@ -902,10 +902,15 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
             Polygon& p = s.scene.polygons[o.firstPolygon + i];
             for (int k = 0; k < p.vertexCount; ++k) p.vertices[k] = glm::dvec3(delta * glm::dvec4(c.polygons[i].vertices[k], 1.0));
         }
+        // Turned (rotated, mirrored or scaled), or only translated since its
+        // clusters' shapes were built (kept then: Hierarchy::updateGeometry).
+        const glm::dmat3 turn = glm::dmat3(worldFromLocal) - glm::dmat3(o.worldFromLocal);
+        const bool turned = std::max({glm::length(turn[0]), glm::length(turn[1]), glm::length(turn[2])}) >
+                            1e-12 * std::max(1.0, glm::length(glm::dmat3(worldFromLocal)[0]));
         o.worldFromLocal = worldFromLocal;
         s.rays.moveInstance(c.instance, delta);
         const ElementId cluster = s.hierarchy.objectCluster(object);
-        s.hierarchy.updateGeometry(cluster);
+        s.hierarchy.updateGeometry(cluster, turned);
         s.hierarchy.refreshAncestors(cluster);
         s.updater.clustersMoved(cluster);
         boxes.insert(boxes.end(), {before, s.scene.objectBounds(object)});

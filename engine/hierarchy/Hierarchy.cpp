@@ -265,7 +265,7 @@ void Hierarchy::release(ElementId id) {
     ++releases_;
 }
 
-void Hierarchy::finishCluster(ElementId id) {
+void Hierarchy::finishCluster(ElementId id, bool turned) {
     HElement& c = elements_[id];
     Aabb& box = bounds_[id].box;
     box = Aabb{};
@@ -278,6 +278,10 @@ void Hierarchy::finishCluster(ElementId id) {
         weighted += child.area * child.center;
     }
     c.center = c.area > 0.0 ? weighted / c.area : box.center();
+    if (!turned) {
+        shapes_[c.shape].ownValid = false;  // its centre moved: summed again from its links
+        return;
+    }
 
     // The orientation: surfaces give their normal and 16 points on their
     // input polygon; clusters their own shape.
@@ -501,7 +505,7 @@ bool Hierarchy::subtreeUnlinked(ElementId id) const {
     return true;
 }
 
-void Hierarchy::updateGeometry(ElementId id) {
+void Hierarchy::updateGeometry(ElementId id, bool turned) {
     HElement& e = elements_[id];
     if (e.isSurface()) {
         const Polygon& p = scene_.polygons[e.polygon];
@@ -519,10 +523,10 @@ void Hierarchy::updateGeometry(ElementId id) {
     // orientation is rebuilt, on all cores.
     const std::vector<ElementId>& children = e.children;
     if (!e.isSurface() && children.size() > 1)
-        tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) { updateGeometry(children[i]); });
+        tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) { updateGeometry(children[i], turned); });
     else
-        for (ElementId c : children) updateGeometry(c);
-    if (!elements_[id].isSurface()) finishCluster(id);
+        for (ElementId c : children) updateGeometry(c, turned);
+    if (!elements_[id].isSurface()) finishCluster(id, turned);
 }
 
 namespace {
