@@ -42,24 +42,6 @@ constexpr double kGuardWarningThreshold = 0.05;
 // shipped scenes: 0.2% to 0.6%).
 constexpr double kBackFaceWarningShare = 0.05;
 constexpr double kRoundTolerance = 3e-3;
-// The share of a frame's time (after the move and the mesh's fixed part)
-// the first traversal may be expected to take; one expected to take more
-// defers the move. Beyond LineSpaceUpdate::kTraversalShare (a half) the
-// traversal's frame only finds, and the next move's frame catches up on
-// what it found (State::catchUpFirst). (Letting the traversal take three
-// quarters of every frame and update what it could in the rest, `office`'s
-// chair at 60 fps (8 ms traversals in frames of 16.7 ms) spent 262 link
-// updates in 27 frames, which ran 12% over, as far from a full solve as
-// frames that wait.)
-constexpr double kTraversalMost = 0.8;
-// A drag deferred for want of time for the traversal measures it again at
-// every kRemeasureAfter-th move, when the traversal it remembers (the
-// fastest of its last four) is within kRemeasureWithin times what the frame
-// allows it: otherwise one slow moment, remembered, deferred the rest of
-// the drag (no deferred move is measured). A traversal that never fits
-// (a bookcase's 135 ms in a 33 ms frame) is not tried again.
-constexpr int kRemeasureAfter = 16;
-constexpr double kRemeasureWithin = 1.5;
 // How far from the scene as loaded, in its sizes, an object or light may be
 // moved. Rays are traced in single precision in that scene's frame
 // (RayCaster::setFrame), and Embree rejects rays past about 1e18 of its
@@ -287,45 +269,31 @@ struct Engine::State {
     // idle time would), with the objects still where it found them, and then
     // defers its own move; the traversal after it covers both moves.
     bool catchUpFirst = false;
-    int deferredInARow = 0;  // moves deferred for want of time for the traversal (kRemeasureAfter)
     double lastMoveSeconds = 0.0;  // what the last move took (the catch-up leaves it that time)
-    // What the last first traversals took for the same objects moving (the
-    // fastest of the last four, from the second on: the first of a drag runs
-    // on cold caches): a frame on a deadline that cannot leave the traversal
-    // that time defers its move. Kept per set of moving objects: a
-    // bookcase's traversal takes ten times a chair's.
-    std::map<std::vector<std::uint32_t>, std::deque<double>> traversals;
-    // The least a traversal has taken per link with an end in the moving
-    // objects (it visits all of those): before a set of objects has a
-    // history, its traversal is guessed from its links at that rate.
-    double traversalPerLink = 0.0;
-    std::optional<double> traversalSeconds(const std::vector<std::uint32_t>& objects) const {
-        const auto found = traversals.find(objects);
-        const std::size_t known = found == traversals.end() ? 0 : found->second.size();
-        if (known >= 2) return *std::min_element(found->second.begin(), found->second.end());
-        if (known == 0 && traversalPerLink > 0.0) return traversalPerLink * double(linksOf(objects));
-        return std::nullopt;  // its first, cold traversal: measured again
+    // A traversal a deadline stopped (FrameStats::traversing): per object,
+    // where its links were when the traversal began. The next frame goes on
+    // with it before its own move, which it defers; anything else that
+    // changes links first drops it, and the move waits again from there.
+    std::map<std::uint32_t, Deferred> finding;
+    void abandonFinding() {
+        if (finding.empty()) return;
+        for (const auto& [object, d] : finding) deferred[object] = d;  // where the links still are
+        finding.clear();
+        updater.abandonTraversal();
     }
-    void recordTraversal(const std::vector<std::uint32_t>& objects, double seconds) {
-        std::deque<double>& last = traversals[objects];
-        last.push_back(seconds);
-        if (last.size() > 4) last.pop_front();
-        if (last.size() > 2) return;  // the rate from a set's first frames (counting its links is a walk)
-        const double perLink = seconds / double(std::max<std::size_t>(1, linksOf(objects)));
-        traversalPerLink = traversalPerLink > 0.0 ? std::min(traversalPerLink, perLink) : perLink;
-    }
-    // Links and p-links with an end in the objects (each counted at its
-    // receiver and at its source).
-    std::size_t linksOf(const std::vector<std::uint32_t>& objects) const {
-        std::size_t n = 0;
-        for (std::uint32_t object : objects)
-            for (std::vector<ElementId> stack{hierarchy.objectCluster(object)}; !stack.empty();) {
-                const HElement& e = hierarchy[stack.back()];
-                stack.pop_back();
-                n += e.links.size() + e.plinks.size() + e.outLinks.size() + e.outPlinks.size();
-                stack.insert(stack.end(), e.children.begin(), e.children.end());
-            }
-        return n;
+    // A frame in which objects' links wait for their moves (being found, or
+    // deferred): how many, and the estimate with their links in the share
+    // of its size each object has moved since they were last updated.
+    void countWaitingMoves(FrameStats& f) {
+        std::map<std::uint32_t, Aabb> since;
+        for (const auto& [object, d] : finding) since.emplace(object, d.box);
+        for (const auto& [object, d] : deferred) since.emplace(object, d.box);
+        std::vector<std::pair<ElementId, double>> shares;
+        for (const auto& [object, box] : since)
+            shares.emplace_back(hierarchy.objectCluster(object),
+                                std::min(1.0, LineSpaceUpdate::motionShare(box, scene.objectBounds(object))));
+        f.deferred = since.size();
+        f.estimatedError = updater.estimatedError(shares);
     }
 };
 
@@ -623,8 +591,9 @@ const SolveStats& Engine::solve(const Progress& progress) {
     SolveStats& st = s.stats;
     s.meshValid = false;
     s.deferred.clear();  // the solve is of the objects where they are
+    s.finding.clear();
+    s.updater.abandonTraversal();
     s.catchUpFirst = false;
-    s.deferredInARow = 0;
     s.refiner.linkRoot();
     // Punctual lights reach the surfaces through light links, refined once:
     // the light a point gets from them does not depend on the solution.
@@ -772,6 +741,7 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
         return {};
     }
     const auto start = std::chrono::steady_clock::now();
+    s.abandonFinding();  // its links change under a traversal under way
     // The layers first: the object's new links split their visibility by them.
     s.chooseDynamic(object);
     const ReinsertionStats r = reinsertUnderRoot(s.hierarchy, s.links, s.refiner, cluster);
@@ -886,6 +856,23 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         u.budget.reset();
         caught = s.updater.refinePending(u, false);
     }
+    // A traversal the last frame's deadline stopped goes on first, with the
+    // objects where it found them, leaving the move the time the last one
+    // took; once it ends, the links it found are updated as its own frame
+    // would have (or wait, stale, for the next frame to catch up on, if it
+    // took more than half of this one). This frame's move is deferred: the
+    // traversal after it covers it. Without a deadline the traversal ends,
+    // its links are updated in full, and the move goes on.
+    const bool resumed = !s.finding.empty();
+    if (resumed) {
+        UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds + choosingSeconds);
+        if (settings.deadlineSeconds) u.budget.reset();  // as in a catch-up: the deadline governs
+        caught = s.updater.resume(u);
+        if (!caught.traversing) {
+            s.finding.clear();
+            s.catchUpFirst = caught.foundOnly;
+        }
+    }
 
     const auto start = std::chrono::steady_clock::now();
     // Where each object's links were last updated: where it starts this
@@ -957,54 +944,31 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     }
     const double moveSeconds = secondsSince(start);
     s.lastMoveSeconds = moveSeconds;
-    // A deadline that cannot leave the first traversal the time it last took
-    // within kTraversalMost of the frame (after the move and the mesh's
-    // fixed part), or a frame that caught up: the move is deferred. The
-    // objects are drawn where they are, with the light of where their links
-    // were last updated, until a frame with the time (or an idle one)
-    // updates the links for one move from there. A budget-starved drag so
-    // keeps the object's links as they were, and its frames short. (A
-    // traversal that left the rest of the frame too little time updated
-    // nothing: at 60 fps in `office`, frames
-    // of 15 ms traversals that spent no link update and ran 20% over,
-    // until the traversals measured pushed the estimate past the frame.)
-    std::vector<std::uint32_t> moving;
-    for (const auto& [object, d] : from) moving.push_back(object);  // sorted: a map's keys
-    // A guess from the links is at the least rate measured, and a large
-    // object's traversal costs more per link (in `two-offices` a bookcase's
-    // 135 ms against 39 guessed from the chair's): one that does not fit
-    // surely does not.
-    const auto traversal = allowDeferral && settings.deadlineSeconds ? s.traversalSeconds(moving) : std::nullopt;
     const double frameLeft = settings.deadlineSeconds
                                  ? *settings.deadlineSeconds - moveSeconds - choosingSeconds -
                                        caught.totalSeconds - s.meshCost.model().first
                                  : 0.0;
-    const double remembered = traversal.value_or(0.0);
-    bool noTime = !catchingUp && traversal.has_value() && kTraversalMost * frameLeft < remembered;
-    if (noTime && ++s.deferredInARow >= kRemeasureAfter &&
-        remembered < kRemeasureWithin * kTraversalMost * frameLeft)
-        noTime = false;  // measured again
-    if (!catchingUp && !noTime) s.deferredInARow = 0;
-    if (catchingUp || noTime) {
+    // A frame that caught up or went on with a traversal defers its move (a
+    // traversal still under way must): the objects are drawn where they are,
+    // with the light of where their links were last updated, until a frame
+    // with the time (or an idle one) updates the links for one move from
+    // there.
+    if (s.updater.traversing() || ((catchingUp || resumed) && allowDeferral && settings.deadlineSeconds)) {
         s.deferred = std::move(from);
         FrameStats stats = caught;
         stats.caughtUp = catchingUp;
+        stats.resumed = resumed;
         stats.moveSeconds = moveSeconds;
         stats.totalSeconds += moveSeconds + choosingSeconds;
         stats.updateSeconds += choosingSeconds;
-        stats.deferred = s.deferred.size();
         // The estimate: what waits already, and the light the objects' own
         // links carry, in the share of the object's size it has moved (its
         // shadow and its light move with it, all of them once it has moved
         // by its size).
-        std::vector<std::pair<ElementId, double>> shares;
-        for (const auto& [object, d] : s.deferred)
-            shares.emplace_back(s.hierarchy.objectCluster(object),
-                                std::min(1.0, LineSpaceUpdate::motionShare(d.box, s.scene.objectBounds(object))));
-        stats.estimatedError = s.updater.estimatedError(shares);
+        s.countWaitingMoves(stats);
         s.updater.countWaiting(stats);
         stats.pending += s.lightLinks.pendingCount();
-        s.buildMesh(stats, settings.deadlineSeconds);  // not a frame of the budget's fit: it has no traversal
+        s.buildMesh(stats, settings.deadlineSeconds);  // not a frame of the budget's fit: its traversal began before
         return stats;
     }
     std::vector<ObjectMotion> motions;
@@ -1017,10 +981,12 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     s.deferred.clear();
     s.updater.setObstacles(std::move(obstacles));
     FrameStats stats = s.updater.update(motions, s.forUpdater(settings, moveSeconds + choosingSeconds));
-    s.recordTraversal(moving, stats.traversalSeconds);
-    // (A frame with no time at all has none to catch up in either: the
-    // traversals measured defer the moves that follow.)
+    // (A frame with no time at all has none to catch up in either.)
     s.catchUpFirst = stats.foundOnly && frameLeft > 0.0;
+    if (stats.traversing) {
+        s.finding = std::move(from);
+        s.countWaitingMoves(stats);
+    }
     stats.moveSeconds = moveSeconds;
     stats.totalSeconds += moveSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();
@@ -1031,8 +997,9 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // updates take as long as those that spent many, and a fit of the whole
     // frame read the budget as fixed cost and held it at 0 (`office` at 30
     // fps: 0 to 228 link updates a frame while the stale links grew). A
-    // frame that only found says nothing of what link updates cost.
-    if (!stats.foundOnly)
+    // frame that only found, or is still finding, says nothing of what link
+    // updates cost.
+    if (!stats.foundOnly && !stats.traversing)
         s.budget.record(stats.spent, stats.totalSeconds - stats.bounceSeconds);
     return stats;
 }
@@ -1041,6 +1008,17 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("refinePending before solve()");
     s.catchUpFirst = false;  // idle time catches up
+    // A traversal a deadline stopped goes on first (on the deadline, at
+    // least a level of it), and the links it finds are updated as its frame
+    // would have, or left stale for the next idle frame.
+    if (!s.finding.empty()) {
+        FrameStats f = s.updater.resume(s.forUpdater(settings, 0.0), true);
+        if (!f.traversing) s.finding.clear();
+        s.countWaitingMoves(f);
+        f.pending += s.lightLinks.pendingCount();
+        s.buildMesh(f, settings.deadlineSeconds);
+        return f;
+    }
     // A deferred move first: the objects stay where they are, and their
     // links are updated for the move from where they were last updated
     // (its traversal is not deferred again; its link updates keep the
@@ -1153,6 +1131,7 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
             throw std::invalid_argument(m.str());
         }
     }
+    s.abandonFinding();  // the light its links carry changes under a traversal under way
     std::vector<ElementId> changed;
     std::vector<std::uint32_t> editedLights;
     // What the edits change, if only emission (LineSpaceUpdate::propagate).

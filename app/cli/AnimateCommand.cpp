@@ -73,6 +73,8 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
         {"deferred", st.deferred},
         {"found_only", st.foundOnly},
         {"caught_up", st.caughtUp},
+        {"traversing", st.traversing},
+        {"resumed", st.resumed},
         {"unmeshed", st.unmeshed},
         {"finer", st.finer},
         {"estimated_error", st.estimatedError},
@@ -167,15 +169,17 @@ int animate(const AnimateSettings& settings) {
             }
             if (record && f > 0) {
                 const FrameStats& st = record->stats;
-                // What a deadline made of the frame's move, if anything.
-                const char* move = st.foundOnly  ? ", found only (its links wait for the next frame)"
-                                   : st.caughtUp ? ", caught up on the last frame's links, move deferred"
-                                   : st.deferred ? ", move deferred"
-                                                 : "";
+                // What a deadline made of the frame, if anything.
+                std::string move;
+                if (st.caughtUp) move += ", caught up on the last frame's links";
+                if (st.resumed) move += ", went on with the last frame's traversal";
+                if (st.traversing) move += ", traversal goes on in the next frame";
+                if (st.foundOnly) move += ", found only (its links wait for the next frame)";
+                if (st.deferred) move += ", links of " + std::to_string(st.deferred) + " moved object(s) wait";
                 std::printf("frame %d: %.3f s (traversal %.3f, update %.3f, push-pull %.3f, snapshot %.3f), "
                             "%zu candidates, %zu refined%s\n",
                             f, st.totalSeconds, st.traversalSeconds, st.updateSeconds, st.pushPullSeconds,
-                            st.snapshotSeconds, st.candidates, st.refined, move);
+                            st.snapshotSeconds, st.candidates, st.refined, move.c_str());
             }
             if (!s.images) return;
             char name[32];

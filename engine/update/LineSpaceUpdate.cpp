@@ -6,6 +6,8 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include <tbb/blocked_range.h>
@@ -44,6 +46,7 @@ FrameStats LineSpaceUpdate::chooseObject(const Aabb& box, const IndexRange& rang
 
 FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions,
                                 const UpdateSettings& settings, bool mayFindOnly) {
+    checkNotTraversing("a move");
     const auto start = std::chrono::steady_clock::now();
     response_.clear();  // links change: what an edit sent no longer scales
     FrameStats stats;
@@ -60,25 +63,63 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions,
     reinstated_ = 0;
     linkStamp_.resize(links_.slots(), 0);
     prunePending();
+    beginTraversal();
+    return goOn(stats, settings, start, mayFindOnly, false);
+}
+
+FrameStats LineSpaceUpdate::resume(const UpdateSettings& settings, bool idle) {
+    if (!traversing_) throw std::logic_error("LineSpaceUpdate::resume with no traversal under way");
+    const auto start = std::chrono::steady_clock::now();
+    FrameStats stats;
+    setDeadline(start, settings);
+    // The same frame for the stamps (a link is found once per traversal).
+    shaftTests_ = 0;
+    reinstated_ = 0;
+    idle_ = idle;
+    stats = goOn(stats, settings, start, true, true);
+    idle_ = false;
+    return stats;
+}
+
+void LineSpaceUpdate::abandonTraversal() {
+    traversing_ = false;
+    traversalLevel_.clear();
+    nextLevel_.clear();
+    levelDone_ = 0;
+    obstacles_.clear();
+}
+
+void LineSpaceUpdate::checkNotTraversing(const char* what) const {
+    if (traversing_) throw std::logic_error(std::string(what) + " while a traversal is under way (resume or abandon it first)");
+}
+
+FrameStats LineSpaceUpdate::goOn(FrameStats stats, const UpdateSettings& settings,
+                                 std::chrono::steady_clock::time_point start, bool mayFindOnly, bool resumed) {
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
     const auto left = [&] { return budgetLeft(budget, stats.spent); };
+    // The share of the frame the traversal may take: of what the updater
+    // was given, less the mesh's fixed part.
+    const auto share = [&](double s) {
+        return start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(
+                           s * std::max(0.0, std::chrono::duration<double>(*deadline_ - start).count() - tail_.seconds(0))));
+    };
+    const bool onTheClock = mayFindOnly && !motions_.empty() && deadline_;
 
     // 1. The first line-space traversal finds the affected links (shaft
-    //    tests and index ranges only) and pulls their work up.
-    findModifiedLinks();
+    //    tests and index ranges only) and pulls their work up; on a
+    //    deadline it may stop, and go on in the next frame.
+    const bool ended = traverse(onTheClock ? std::optional(share(kTraversalMost)) : std::nullopt);
     stats.traversalSeconds = secondsSince(start);
     stats.shaftTests = shaftTests_;
-    stats.foundOnly = mayFindOnly && !motions.empty() && deadline_ &&
-                 stats.traversalSeconds >
-                     kTraversalShare * (std::chrono::duration<double>(*deadline_ - start).count() -
-                                        tail_.seconds(0));
-    if (stats.foundOnly) {
-        defer(0);  // the root's visit and all below it
+    stats.traversing = !ended;
+    stats.foundOnly = ended && onTheClock && std::chrono::steady_clock::now() > share(kTraversalShare);
+    if (!ended || stats.foundOnly) {
+        if (stats.foundOnly) defer(0);  // the root's visit and all below it
         // What else is dirty (a moved light's direct light) is pushed as the
         // clock allows; the rest waits, counted in the estimate.
         touch(pushPull(stats, true));
-        obstacles_.clear();
+        if (ended) obstacles_.clear();
         finish(stats, start);
         return stats;
     }
@@ -86,9 +127,17 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions,
 
     // 2. The second spends the budget top-down (Fig. 8): link updates,
     //    reinstated p-links; the stale links of earlier frames next; then
-    //    the candidates' in-place gather and refinement from the heap.
+    //    the candidates' in-place gather and refinement from the heap. A
+    //    traversal that began in an earlier frame leaves what it found
+    //    stale, behind what earlier frames left, and the frame catches up
+    //    on the clock: the top-down spending stops only between levels, and
+    //    with no budget but the deadline's a level overran the frame by
+    //    half (`office`'s chair at 120 fps).
     auto t = std::chrono::steady_clock::now();
-    stats.spent = controlledUpdate(budget, stats);
+    if (resumed)
+        defer(0);
+    else
+        stats.spent = controlledUpdate(budget, stats);
     stats.spent += catchUp(left(), stats);
     updateCandidates(stats, left());
     stats.reinstated = reinstated_;
@@ -221,7 +270,9 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     std::vector<ElementId> unpushed = solver_.unpushed();
     std::sort(unpushed.begin(), unpushed.end());
     std::erase_if(lightChanges_, [&](const auto& c) { return !std::binary_search(unpushed.begin(), unpushed.end(), c.first); });
-    stats.estimatedError = estimatedError();
+    // A frame whose traversal goes on: the engine estimates it, with the
+    // moving objects' links.
+    if (!traversing_) stats.estimatedError = estimatedError();
     stats.totalSeconds = secondsSince(start);
 }
 
@@ -261,16 +312,12 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
         if (active(links_[id])) addPower(links_[id].receiver, refiner_.variationBound(links_[id]));
     // A stale link could change by its whole transfer once the objects have
     // moved by their size since it was last right; by that share before.
-    // Their potential transfers on all cores: a starved drag leaves tens of
-    // thousands (in `office`, 3.5 ms a frame on one core with a sort).
+    // Their potential transfers as they were deferred (StaleLink): a starved
+    // drag leaves tens of thousands.
     double since = 0.0;
     for (const auto& d : deferred) since = std::max(since, d.second);
-    std::vector<double> staleTransfer(stale_.size(), 0.0);
-    tbb::parallel_for(std::size_t(0), stale_.size(), [&](std::size_t i) {
-        const auto& [id, at] = stale_[i];
-        if (active(links_[id])) staleTransfer[i] = std::min(1.0, motion_ + since - at) * heapKey(links_[id]);
-    });
-    for (std::size_t i = 0; i < stale_.size(); ++i) addPower(links_[stale_[i].first].receiver, staleTransfer[i]);
+    for (const StaleLink& s : stale_)
+        if (const Link& l = links_[s.id]; active(l)) addPower(l.receiver, std::min(1.0, motion_ + since - s.at) * s.transfer);
     // The links with an end in a deferred object's subtree, in the share of
     // its size it has moved.
     for (const auto& [top, share] : deferred)
@@ -343,6 +390,7 @@ std::chrono::steady_clock::duration seconds(double s) {
 }  // namespace
 
 void LineSpaceUpdate::setDeadline(std::chrono::steady_clock::time_point start, const UpdateSettings& settings) {
+    ++pushFrame_;  // every frame begins here, a resumed traversal's too
     deadline_.reset();
     if (settings.deadlineSeconds) deadline_ = start + seconds(std::max(0.0, *settings.deadlineSeconds));
     startLinkUpdates();
@@ -382,7 +430,7 @@ std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats, bool onTheCl
     for (ElementId e : visited) {
         const HElement& el = h_[e];
         if (!el.isSurface() || !el.children.empty() || el.polygon == kNone) continue;
-        if (std::exchange(polygonStamp_[el.polygon], frame_) != frame_) polygons.push_back(el.polygon);
+        if (std::exchange(polygonStamp_[el.polygon], pushFrame_) != pushFrame_) polygons.push_back(el.polygon);
     }
     stats.changedLeaves += tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, polygons.size()), std::size_t(0),
@@ -456,6 +504,7 @@ double LineSpaceUpdate::unsentPowerOf(ElementId e, bool absolute) const {
 }
 
 FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings, bool idle) {
+    checkNotTraversing("refinePending");
     const auto start = std::chrono::steady_clock::now();
     idle_ = idle;
     FrameStats stats;
@@ -494,6 +543,7 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings, bool i
 
 FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, const UpdateSettings& settings,
                                       const EmissionChange* emission) {
+    checkNotTraversing("an edit");
     const auto start = std::chrono::steady_clock::now();
     editStart_ = start;
     meanReflectance_.reset();  // an edit may change reflectance

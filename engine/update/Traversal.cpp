@@ -4,7 +4,8 @@
 // the traversal goes on below it, restricted to its source's range; active
 // links found so are the candidates. It only finds: the links are updated by
 // the second traversal (ControlledUpdate.cpp), which spends the frame's
-// budget top-down with the work this one pulls up (sec. 6.1).
+// budget top-down with the work this one pulls up (sec. 6.1). On a deadline
+// it stops between levels and goes on in the next frame (resume).
 
 #include <algorithm>
 
@@ -68,38 +69,58 @@ bool LineSpaceUpdate::cutBefore(ElementId s, ElementId r) const {
     });
 }
 
-void LineSpaceUpdate::findModifiedLinks() {
+void LineSpaceUpdate::beginTraversal() {
     refiner_.sortLinkLists();  // what the last frame appended (links/SourceOrder.h)
     visitCount_ = 0;
     addVisit(h_.root(), h_.range(h_.root()));
+    traversalLevel_.assign(1, 0);
+    nextLevel_.clear();
+    levelDone_ = 0;
+    traversing_ = true;
+}
+
+bool LineSpaceUpdate::traverse(std::optional<std::chrono::steady_clock::time_point> stop) {
     // Level by level, each level's visits on all cores: a visit only reads,
     // and stamps its own candidates (the visits of a level have disjoint
-    // subtrees, or disjoint source ranges on the same node).
-    std::vector<std::size_t> level{0}, next;
+    // subtrees, or disjoint source ranges on the same node). On the clock a
+    // level goes in runs of kVisitsPerLook visits, the clock looked at
+    // between them: the traversal stops there, where it is in the level
+    // kept, and goes on at the next call (a level of `office`'s chair takes
+    // up to a few milliseconds). At least one run a call, so that frames on
+    // a deadline already past still end it.
+    std::vector<std::size_t>& level = traversalLevel_;
     std::vector<std::vector<std::pair<ElementId, IndexRange>>>& children = childVisits_;
     std::vector<std::size_t> tests;
-    while (!level.empty()) {
-        if (children.size() < level.size()) children.resize(level.size());
-        for (std::size_t i = 0; i < level.size(); ++i) children[i].clear();
-        tests.assign(level.size(), 0);
-        tbb::parallel_for(std::size_t(0), level.size(),
-                          [&](std::size_t i) { tests[i] = visitNode(visits_[level[i]], children[i]); });
-        next.clear();
-        for (std::size_t i = 0; i < level.size(); ++i) {
+    for (bool first = true; !level.empty(); first = false) {
+        if (!first && stop && std::chrono::steady_clock::now() >= *stop) return false;
+        const std::size_t begin = levelDone_;
+        const std::size_t end = stop ? std::min(level.size(), begin + kVisitsPerLook) : level.size();
+        const std::size_t n = end - begin;
+        if (children.size() < n) children.resize(n);
+        for (std::size_t i = 0; i < n; ++i) children[i].clear();
+        tests.assign(n, 0);
+        tbb::parallel_for(std::size_t(0), n,
+                          [&](std::size_t i) { tests[i] = visitNode(visits_[level[begin + i]], children[i]); });
+        for (std::size_t i = 0; i < n; ++i) {
             shaftTests_ += tests[i];
             // The child visits, in the order of the groups and of the children.
             std::size_t k = 0;
-            for (Group& g : visits_[level[i]].groups) {
+            for (Group& g : visits_[level[begin + i]].groups) {
                 g.firstVisit = visitCount_;
                 while (k < children[i].size() && children[i][k].second.first == g.range.first &&
                        children[i][k].second.last == g.range.last) {
-                    next.push_back(addVisit(children[i][k].first, children[i][k].second));
+                    nextLevel_.push_back(addVisit(children[i][k].first, children[i][k].second));
                     ++k;
                 }
                 g.visitCount = visitCount_ - g.firstVisit;
             }
         }
-        level.swap(next);
+        levelDone_ = end;
+        if (levelDone_ == level.size()) {
+            level.swap(nextLevel_);
+            nextLevel_.clear();
+            levelDone_ = 0;
+        }
     }
     // Pull the work up (sec. 6.1): a visit's children come after it.
     for (std::size_t i = visitCount_; i-- > 0;) {
@@ -111,6 +132,8 @@ void LineSpaceUpdate::findModifiedLinks() {
             v.work += g.work;
         }
     }
+    traversing_ = false;
+    return true;
 }
 
 std::size_t LineSpaceUpdate::addVisit(ElementId he, const IndexRange& ind) {

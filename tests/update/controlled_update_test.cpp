@@ -193,9 +193,12 @@ TEST(StabilityControlledUpdate, SmallBudgetIsCoarserThenCatchesUp) {
 }
 
 // Frames on a deadline: the mechanism, not the wall clock. A deadline
-// already past when the frame starts stops every link update: everything
-// the traversal found waits, stale, and an idle frame on such a deadline
-// does nothing either; without one, idle time catches up to what an
+// already past when the frame starts stops the first traversal after one
+// run of visits (LineSpaceUpdate::kTraversalMost): it goes on, a run a
+// frame, where it stopped (its shaft tests over the frames are those of the
+// same traversal made at once), and no link is updated. Once it has ended,
+// everything it found waits, stale, and an idle frame on such a deadline
+// does nothing more; without one, idle time catches up to what an
 // unlimited frame computes.
 TEST(StabilityControlledUpdate, DeadlineStopsTheWorkAndTheRestWaits) {
     Engine late(roomWithBlock(), coarse());
@@ -204,11 +207,25 @@ TEST(StabilityControlledUpdate, DeadlineStopsTheWorkAndTheRestWaits) {
     ASSERT_TRUE(free.solve().converged);
     UpdateSettings past;
     past.deadlineSeconds = 0.0;
-    const FrameStats f = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past);
-    free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    FrameStats f = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past);
+    const FrameStats whole = free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    EXPECT_TRUE(f.traversing);
+    EXPECT_EQ(f.deferred, 1u);  // its links wait
+    EXPECT_GT(f.estimatedError, 0.0);
+    std::size_t tests = f.shaftTests;
+    int frames = 1;
+    for (; frames < 1000 && f.traversing; ++frames) {
+        EXPECT_EQ(f.spent, 0u);
+        EXPECT_EQ(f.refined, 0u);
+        f = late.refinePending(past);
+        tests += f.shaftTests;
+    }
+    EXPECT_FALSE(f.traversing);
+    EXPECT_GT(frames, 2) << "a run of visits a frame";
+    EXPECT_EQ(tests, whole.shaftTests) << "going on where it stopped, in " << frames << " frames";
     EXPECT_EQ(f.spent, 0u);
-    EXPECT_EQ(f.refined, 0u);
     EXPECT_GT(f.stale, 0u);
+    EXPECT_EQ(f.deferred, 0u);
     EXPECT_GT(f.estimatedError, 0.0);
     const FrameStats still = late.refinePending(past);
     EXPECT_EQ(still.spent, 0u);
@@ -274,154 +291,111 @@ TEST(StabilityControlledUpdate, DeadlineLeavesBouncesUnsentUntilIdle) {
     EXPECT_LT(compareSamples(slow.samples(), free.samples()).rms, 0.01);
 }
 
-// A move whose deadline cannot leave the traversal the time it last took is
-// deferred: the object moves, its links wait. Two such moves, then an idle
-// frame, give what one unlimited move from the start to the end gives: the
-// links are updated once, for the whole way.
-TEST(StabilityControlledUpdate, MovesWithoutTimeForTheTraversalWaitAndCoalesce) {
+// Moves made while a traversal goes on over frames wait: each frame goes on
+// with the traversal, with the object where it was found, then moves the
+// object and defers its move. The frame after the one that ends it (here,
+// past its deadline: it only found) catches up, then a traversal from where
+// the links were found to where the object is begins. Idle frames then
+// give what the same moves give unlimited: line space covered once, the
+// same solution. (Against one move from the start to the end, 0.40% rms,
+// as the same 40 moves unlimited are: the links the object crossed on its
+// way are judged again, and one such move never looks at them.)
+TEST(StabilityControlledUpdate, MovesWhileTheTraversalGoesOnWaitAndCoalesce) {
     Engine late(roomWithBlock(), coarse());
     Engine free(roomWithBlock(), coarse());
     ASSERT_TRUE(late.solve().converged);
     ASSERT_TRUE(free.solve().converged);
     UpdateSettings past;
     past.deadlineSeconds = 0.0;
-    // The first two moves measure the traversal (the first runs on cold
-    // caches: one is not enough to go by).
-    std::size_t stale = 0;
-    for (const double x : {0.05, 0.1}) {
-        const FrameStats f = late.moveDynamicObject(translation(V(x, 0.0, x / 2.0)), past);
-        EXPECT_EQ(f.deferred, 0u);
-        EXPECT_GT(f.shaftTests, 0u);
-        stale = f.stale;
+    std::vector<FrameStats> frames;
+    for (int k = 1; k <= 40; ++k) {
+        const double x = 0.4 * k / 40.0;
+        frames.push_back(late.moveDynamicObject(translation(V(x, 0.0, x / 2.0)), past));
     }
-    // The deadline passed before any link update: the links found wait, stale.
-    EXPECT_GT(stale, 0u);
-    const FrameStats second = late.moveDynamicObject(translation(V(0.25, 0.0, 0.1)), past);
-    const FrameStats third = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past);
-    for (const FrameStats& f : {second, third}) {
-        EXPECT_EQ(f.deferred, 1u);
-        EXPECT_EQ(f.shaftTests, 0u);
-        EXPECT_GT(f.estimatedError, 0.0);
-        // A deferred frame says what still waits (it once said 0).
-        EXPECT_EQ(f.stale, stale);
+    EXPECT_TRUE(frames[0].traversing);
+    EXPECT_EQ(frames[0].deferred, 1u);
+    std::size_t ended = frames.size();
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        const FrameStats& f = frames[k];
+        EXPECT_EQ(f.spent, 0u) << "frame " << k;
+        EXPECT_EQ(f.deferred, 1u) << "frame " << k;
+        EXPECT_GT(f.estimatedError, 0.0) << "frame " << k;
+        if (k > 0 && ended == frames.size() && !f.traversing) ended = k;
     }
-    const FrameStats idle = late.refinePending();
-    EXPECT_EQ(idle.deferred, 0u);
-    EXPECT_GT(idle.shaftTests, 0u);
-    late.refinePending();
-    free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    ASSERT_LT(ended + 2, frames.size()) << "the traversal never ended";
+    EXPECT_GT(frames[ended].shaftTests, 0u);
+    EXPECT_TRUE(frames[ended].foundOnly);
+    EXPECT_GT(frames[ended].stale, 0u);
+    EXPECT_TRUE(frames[ended + 1].caughtUp);
+    EXPECT_EQ(frames[ended + 1].shaftTests, 0u);
+    EXPECT_TRUE(frames[ended + 2].traversing) << "a traversal for the moves since";
+    FrameStats idle = late.refinePending();
+    for (int k = 0; k < 10 && idle.deferred + idle.stale + idle.pending + idle.unsent > 0; ++k) idle = late.refinePending();
+    EXPECT_EQ(idle.deferred + idle.stale + idle.pending + idle.unsent, 0u);
+    for (int k = 1; k <= 40; ++k) {
+        const double x = 0.4 * k / 40.0;
+        free.moveDynamicObject(translation(V(x, 0.0, x / 2.0)));
+    }
     const CoverageResult c = checkCoverage(late, 5u, 200);
     EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
     EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
 }
 
-// The time a traversal takes is kept per set of moving objects: a bookcase
-// (2.3 times the chair's links in `office`) moved after the chair is not
-// judged by the chair's traversals. Before it has a history of its own, its
-// traversal is guessed from its links at the least rate per link measured,
-// and a move whose guess does not fit its deadline waits from the first
-// frame. The deadline here is twice the chair's traversal: the bookcase's
-// guess (2.3 times the chair's) does not fit the four fifths of it a
-// traversal may take (kTraversalMost), the chair's does. (Before a
-// traversal could take more than half of the frame, the deadline was three
-// times the chair's traversal; two and a half let the bookcase fit once a
-// move no longer measured its polygons' closure again, about 7 ms a move in
-// `office`, whose seams had made it look open.) Then the chair in frames its
-// traversal nearly fills: a frame that finds, one that catches up, one that
-// finds.
-TEST(StabilityControlledUpdate, ALargerObjectsFirstMoveIsJudgedByItsOwnLinks) {
-    Engine engine(test::office(), EngineSettings{});
-    ASSERT_TRUE(engine.solve().converged);
-    const auto placed = [&](const char* name) {
-        return engine.scene().objects[*engine.scene().findObject(name)].worldFromLocal;
-    };
-    double chairTraversal = INFINITY;
-    for (int frame = 0; frame < 2; ++frame) {
-        const FrameStats f = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}});
-        chairTraversal = std::min(chairTraversal, f.traversalSeconds);
-    }
-    engine.setDynamicObject("bookcase-1");
-    UpdateSettings tight;
-    tight.deadlineSeconds = 2.0 * chairTraversal;
-    const FrameStats first =
-        engine.moveObjects({{"bookcase-1", translation(V(0.02, 0.0, 0.0)) * placed("bookcase-1")}}, tight);
-    EXPECT_EQ(first.deferred, 1u);
-    EXPECT_EQ(first.shaftTests, 0u);
-    // The chair alone is judged by its own traversals again: it fits.
-    engine.refinePending();  // the bookcase's move is made (and measured)
-    const FrameStats chair = engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, tight);
-    EXPECT_EQ(chair.deferred, 0u);
-    engine.refinePending();  // what it left stale, if its traversal took more than half
-    // A frame its traversal would take three fifths of: the traversal runs
-    // (it may take up to kTraversalMost, 4/5, of the frame), but it leaves
-    // the link updates it found less than the half they are due, so the next
-    // move's frame updates them instead of traversing, with the chair where
-    // they were found, and defers its own move; the frame after that
-    // traverses the chair's way from there.
-    const double least = std::min(chairTraversal, chair.traversalSeconds);
-    UpdateSettings filled;
-    filled.deadlineSeconds = 1.65 * least;
-    const FrameStats finds =
-        engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
-    EXPECT_EQ(finds.deferred, 0u);
-    EXPECT_GT(finds.shaftTests, 0u);
-    EXPECT_GT(finds.stale, 0u);
-    EXPECT_TRUE(finds.foundOnly);
-    EXPECT_FALSE(finds.caughtUp);
-    EXPECT_EQ(finds.spent, 0u);
-    const FrameStats updates =
-        engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
-    EXPECT_EQ(updates.deferred, 1u);
-    EXPECT_EQ(updates.shaftTests, 0u);
-    EXPECT_TRUE(updates.caughtUp);
-    EXPECT_FALSE(updates.foundOnly);
-    EXPECT_GT(updates.spent, 0u);
-    EXPECT_LT(updates.stale, finds.stale);
-    const FrameStats findsAgain =
-        engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, filled);
-    EXPECT_EQ(findsAgain.deferred, 0u);
-    EXPECT_GT(findsAgain.shaftTests, 0u);
-    // A frame it would take more than four fifths of waits.
-    UpdateSettings short_;
-    short_.deadlineSeconds = 1.1 * least;
-    const FrameStats waits =
-        engine.moveObjects({{"chair", translation(V(0.02, 0.0, 0.0)) * placed("chair")}}, short_);
-    EXPECT_EQ(waits.deferred, 1u);
-    EXPECT_EQ(waits.shaftTests, 0u);
-    // A drag deferred for want of time measures its traversal again at
-    // every 16th move (kRemeasureAfter) when the traversal it remembers is
-    // near what the frame allows (within 1.5 times its four fifths): the
-    // bookcase, whose traversal (tens of milliseconds) dwarfs the move and
-    // the mesh, in frames of about that time. The first 15 moves wait, the
-    // 16th traverses; then no more than 15 wait in a row (a traversal
-    // measured faster may let the moves after it run).
-    const glm::dmat4 step = translation(V(0.005, 0.0, 0.0));
-    double bookcase = INFINITY;
-    for (int frame = 0; frame < 2; ++frame)
-        bookcase = std::min(bookcase, engine.moveObjects({{"bookcase-1", step * placed("bookcase-1")}}).traversalSeconds);
-    UpdateSettings near;
-    near.deadlineSeconds = 1.05 * bookcase;
-    std::vector<bool> waited;  // per move: deferred for want of time (not a catch-up)
-    for (int move = 0; move < 40; ++move) {
-        const FrameStats f = engine.moveObjects({{"bookcase-1", step * placed("bookcase-1")}}, near);
-        waited.push_back(f.deferred > 0 && !f.caughtUp);
-        if (move == 15) {
-            EXPECT_GT(f.shaftTests, 0u) << "the 16th move measures the traversal again";
-        }
-    }
-    EXPECT_EQ(std::count(waited.begin(), waited.begin() + 15, true), 15);
-    int run = 0, longest = 0;
-    for (bool w : waited) longest = std::max(longest, run = w ? run + 1 : 0);
-    EXPECT_LE(longest, 15);
-    // Idle time makes the waiting move and the links still stale: line
-    // space is covered once, and nothing is left waiting.
-    FrameStats idle = engine.refinePending();
-    for (int frame = 0; frame < 10 && idle.stale + idle.pending + idle.unsent > 0; ++frame)
-        idle = engine.refinePending();
-    EXPECT_EQ(idle.stale + idle.pending + idle.unsent, 0u);
-    EXPECT_EQ(idle.estimatedError, 0.0);
-    const CoverageResult c = checkCoverage(engine, 5u, 100);
+// A traversal stopped by one frame's deadline and ended in the next, which
+// has the time: everything it found waits, stale, behind what earlier frames
+// left, and the frame catches up on it on the clock (here all of it). The
+// frame's own move is deferred, for the next traversal.
+TEST(StabilityControlledUpdate, ATraversalEndedWithTimeLeftCatchesUpInItsFrame) {
+    Engine late(roomWithBlock(), coarse());
+    Engine free(roomWithBlock(), coarse());
+    ASSERT_TRUE(late.solve().converged);
+    ASSERT_TRUE(free.solve().converged);
+    UpdateSettings past, ample;
+    past.deadlineSeconds = 0.0;
+    ample.deadlineSeconds = 600.0;
+    const FrameStats stops = late.moveDynamicObject(translation(V(0.2, 0.0, 0.1)), past);
+    EXPECT_TRUE(stops.traversing);
+    const FrameStats ends = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), ample);
+    EXPECT_FALSE(ends.traversing);
+    EXPECT_FALSE(ends.foundOnly);
+    EXPECT_GT(ends.shaftTests, 0u);
+    EXPECT_GT(ends.spent, 0u);
+    EXPECT_EQ(ends.stale, 0u);
+    EXPECT_EQ(ends.deferred, 1u);
+    // The next frame traverses the deferred move and updates its links.
+    const FrameStats next = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), ample);
+    EXPECT_EQ(next.deferred, 0u);
+    EXPECT_GT(next.spent, 0u);
+    free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    late.refinePending();
+    const CoverageResult c = checkCoverage(late, 5u, 200);
     EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
+    EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
+}
+
+// Anything else that changes links drops a traversal under way (an edit, a
+// choice of another object): nothing it found has changed, and the move
+// waits again from where the links were, for idle time or the next move.
+TEST(StabilityControlledUpdate, AnEditDropsATraversalUnderWayAndTheMoveWaits) {
+    Engine late(roomWithBlock(), coarse());
+    Engine free(roomWithBlock(), coarse());
+    ASSERT_TRUE(late.solve().converged);
+    ASSERT_TRUE(free.solve().converged);
+    UpdateSettings past;
+    past.deadlineSeconds = 0.0;
+    ASSERT_TRUE(late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past).traversing);
+    const FrameStats edit = late.editMaterial("light", V(20.0), std::nullopt);
+    EXPECT_FALSE(edit.traversing);
+    FrameStats idle = late.refinePending();
+    EXPECT_GT(idle.shaftTests, 0u) << "the move's traversal, from the start";
+    for (int k = 0; k < 10 && idle.deferred + idle.stale + idle.pending + idle.unsent > 0; ++k) idle = late.refinePending();
+    EXPECT_EQ(idle.deferred + idle.stale + idle.pending + idle.unsent, 0u);
+    free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    free.editMaterial("light", V(20.0), std::nullopt);
+    free.refinePending();
+    const CoverageResult c = checkCoverage(late, 5u, 200);
+    EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
+    EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
 }
 
 // The live estimate is in the units of the measured error (the rms

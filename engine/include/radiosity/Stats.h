@@ -119,12 +119,19 @@ struct FrameStats {
     // (a dimmed light's): idle time (refinePending) coarsens them.
     std::size_t finer = 0;
     std::size_t unmeshed = 0;          // polygons whose meshing the deadline left for a later frame (drawn with their last light)
-    std::size_t deferred = 0;          // objects whose move a deadline left for a later frame (links not yet updated)
+    std::size_t deferred = 0;          // objects whose move a deadline left for a later frame (links not yet updated, or still being found)
     // On a deadline: the frame's traversal took more than half of it, and
     // every link it found waits, stale, for the next move's frame, which
     // catches up on them first (then caughtUp) and defers its own move.
     bool foundOnly = false;
     bool caughtUp = false;
+    // On a deadline: the frame's traversal did not end in the time it may
+    // take of the frame (kTraversalMost), and the next frame goes on with
+    // it where it stopped; its moving objects count in `deferred`.
+    bool traversing = false;
+    // The frame went on with a traversal an earlier frame's deadline
+    // stopped (before its own move, which it then defers).
+    bool resumed = false;
     // A live estimate of how far the frame is from what an unlimited update
     // gives, in the units of SolutionError::rms: the power the stale and
     // pending links could still change (each link's potential transfer,
