@@ -167,41 +167,48 @@ void LineSpaceUpdate::defer(std::size_t index) {
         stack.pop_back();
         for (const std::vector<LinkId>* list : {&v.affected, &v.candidates})
             for (LinkId id : *list) {
-                const Link& l = links_[id];
-                if (!l.live) continue;
                 if (id >= staleMark_.size()) staleMark_.resize(links_.slots(), 0);
-                const bool full = layersChanged_ || movedEnd(l.source) || movedEnd(l.receiver);
-                if (full) staleMark_[id] |= kFull;
-                if (staleMark_[id] & kQueued) continue;
-                staleMark_[id] |= kQueued;
-                stale_.push_back({id, motionBefore_, 0.0});
+                if (staleMark_[id]) continue;
+                staleMark_[id] = 1;
+                stale_.push_back({id, frame_, motionBefore_, 0.0});
             }
         for (const Group& g : v.groups)
             for (std::size_t child : g.visits()) stack.push_back(child);
     }
-    tbb::parallel_for(before, stale_.size(), [&](std::size_t i) { stale_[i].transfer = heapKey(links_[stale_[i].id]); });
+    tbb::parallel_for(before, stale_.size(), [&](std::size_t i) {
+        const Link& l = links_[stale_[i].id];
+        stale_[i].transfer = l.live ? heapKey(l) : 0.0;  // a reinstate may have removed it
+    });
+}
+
+bool LineSpaceUpdate::changedSince(const Link& l, std::uint32_t frame) const {
+    if (layersChangedFrame_ >= frame) return true;
+    return std::any_of(lastMoved_.begin(), lastMoved_.end(), [&](const auto& m) {
+        return m.second >= frame && (m.first.nestedWith(h_.range(l.source)) || m.first.nestedWith(h_.range(l.receiver)));
+    });
 }
 
 std::size_t LineSpaceUpdate::catchUp(std::size_t budget, FrameStats& stats) {
     // In the order deferred (a p-link before the links below it), as many as
     // the budget allows; each is recomputed at the current position, in full
-    // where an end moved or the layers changed since it was last right
-    // (kFull), otherwise its dynamic visibility only (three times cheaper).
+    // where an end moved or the layers changed since the frame that found it
+    // (changedSince), otherwise its dynamic visibility only.
     // In chunks, so that a deadline is looked at.
-    std::vector<std::pair<LinkId, bool>> batch;
+    std::vector<std::pair<LinkId, std::uint32_t>> batch;
     std::size_t done = 0;
     while (!stale_.empty() && (budget == kUnlimited || done < budget) && !pastDeadline()) {
         batch.clear();
         const std::size_t chunk = budget == kUnlimited ? kDeadlineChunk : std::min(kDeadlineChunk, budget - done);
         while (!stale_.empty() && batch.size() < chunk) {
-            const LinkId id = stale_.front().id;
+            const auto [id, frame, at, transfer] = stale_.front();
             stale_.pop_front();
-            const bool full = id >= staleMark_.size() || (staleMark_[id] & kFull);
             if (id < staleMark_.size()) staleMark_[id] = 0;
-            if (links_[id].live) batch.emplace_back(id, full);
+            if (links_[id].live) batch.emplace_back(id, frame);
         }
-        tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) { recompute(batch[i].first, batch[i].second); });
-        for (const auto& [id, full] : batch) {
+        tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) {
+            recompute(batch[i].first, changedSince(links_[batch[i].first], batch[i].second));
+        });
+        for (const auto& [id, frame] : batch) {
             const Link& l = links_[id];
             if (!l.live) continue;  // a reinstate earlier in the batch removed it
             if (l.passive) {

@@ -53,6 +53,16 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions,
     setDeadline(start, settings);
     ++frame_;
     motions_ = motions;
+    if (layersChanged_) layersChangedFrame_ = frame_;
+    for (const ObjectMotion& m : motions) {
+        const auto same = std::find_if(lastMoved_.begin(), lastMoved_.end(), [&](const auto& e) {
+            return e.first.first == m.range.first && e.first.last == m.range.last;
+        });
+        if (same == lastMoved_.end())
+            lastMoved_.emplace_back(m.range, frame_);
+        else
+            same->second = frame_;
+    }
     double step = 0.0;
     for (const ObjectMotion& m : motions) step = std::max(step, motionShare(m.oldBox, m.newBox));
     motionBefore_ = motion_;
