@@ -95,13 +95,13 @@ public:
     void setLightScale(double scale);
     // On a deadline, the share of the frame (what the updater was given of
     // it, less the mesh's fixed part) the first traversal may take and
-    // leave the rest to the link updates it finds. A traversal that takes
-    // more leaves its frame nothing but what it found: every link found
-    // waits, stale, with the push, the bounces and following the light, and
-    // FrameStats::foundOnly says so; the engine's next move
-    // then catches up on them (refinePending on the clock) instead of
-    // traversing. A drag whose traversal nearly fills a frame so alternates
-    // a frame that finds and one that updates.
+    // leave the rest to the link updates it finds. A traversal that ends
+    // later leaves its frame nothing but what it found (FrameStats::
+    // foundOnly): the traversal stays under way, and the next frame's
+    // resume defers every link it found, stale, and catches up on them (as
+    // refinePending does, on the clock); the engine's next moves catch up
+    // too while stale links are left. A drag whose traversal nearly fills a
+    // frame so alternates a frame that finds and frames that update.
     static constexpr double kTraversalShare = 0.5;
     // A traversal that has not ended at this share of its frame stops there
     // (FrameStats::traversing) and goes on at the next call to resume, so

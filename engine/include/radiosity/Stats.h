@@ -120,9 +120,10 @@ struct FrameStats {
     std::size_t finer = 0;
     std::size_t unmeshed = 0;          // polygons whose meshing the deadline left for a later frame (drawn with their last light)
     std::size_t deferred = 0;          // objects whose move a deadline left for a later frame (links not yet updated, or still being found)
-    // On a deadline: the frame's traversal took more than half of it, and
-    // every link it found waits, stale, for the next move's frame, which
-    // catches up on them first (then caughtUp) and defers its own move.
+    // On a deadline: the frame's traversal ended after half of it, and
+    // what it found waits for the next frame, which defers every link found,
+    // stale, and catches up on them first (resumed, then caughtUp in the
+    // frames after while stale links are left) and defers its own move.
     bool foundOnly = false;
     bool caughtUp = false;
     // On a deadline: the frame's traversal did not end in the time it may
