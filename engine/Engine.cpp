@@ -1019,8 +1019,9 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
     if (!s.solved) throw std::logic_error("refinePending before solve()");
     s.catchUpFirst = false;  // idle time catches up
     // A traversal a deadline stopped goes on first (on the deadline, at
-    // least a level of it), and the links it finds are updated as its frame
-    // would have, or left stale for the next idle frame.
+    // least a run of its visits); once it ends, the links it found wait,
+    // stale, and are caught up on with the time left, or by the next idle
+    // frames.
     if (!s.finding.empty()) {
         FrameStats f = s.updater.resume(s.forUpdater(settings, 0.0), true);
         if (!f.traversing) s.finding.clear();

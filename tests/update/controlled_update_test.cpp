@@ -192,6 +192,37 @@ TEST(StabilityControlledUpdate, SmallBudgetIsCoarserThenCatchesUp) {
     EXPECT_TRUE(allFinite(limited.samples()));
 }
 
+UpdateSettings withDeadline(double seconds) {
+    UpdateSettings u;
+    u.deadlineSeconds = seconds;
+    return u;
+}
+
+// The test room solved twice: one engine for frames on deadlines, one for
+// the same moves unlimited. At the end the first must cover line space
+// once and give the second's solution.
+struct LateAndFree {
+    Engine late{roomWithBlock(), coarse()};
+    Engine free{roomWithBlock(), coarse()};
+    LateAndFree() {
+        EXPECT_TRUE(late.solve().converged);
+        EXPECT_TRUE(free.solve().converged);
+    }
+    void expectTheSameSolution() {
+        const CoverageResult c = checkCoverage(late, 5u, 200);
+        EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
+        EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
+    }
+};
+
+// Idle frames until nothing waits (at most 10 after the first).
+FrameStats idleUntilNothingWaits(Engine& engine) {
+    FrameStats idle = engine.refinePending();
+    for (int k = 0; k < 10 && idle.deferred + idle.stale + idle.pending + idle.unsent > 0; ++k) idle = engine.refinePending();
+    EXPECT_EQ(idle.deferred + idle.stale + idle.pending + idle.unsent, 0u);
+    return idle;
+}
+
 // Frames on a deadline: the mechanism, not the wall clock. A deadline
 // already past when the frame starts stops the first traversal after one
 // run of visits (LineSpaceUpdate::kTraversalMost): it goes on, a run a
@@ -201,14 +232,11 @@ TEST(StabilityControlledUpdate, SmallBudgetIsCoarserThenCatchesUp) {
 // does nothing more; without one, idle time catches up to what an
 // unlimited frame computes.
 TEST(StabilityControlledUpdate, DeadlineStopsTheWorkAndTheRestWaits) {
-    Engine late(roomWithBlock(), coarse());
-    Engine free(roomWithBlock(), coarse());
-    ASSERT_TRUE(late.solve().converged);
-    ASSERT_TRUE(free.solve().converged);
-    UpdateSettings past;
-    past.deadlineSeconds = 0.0;
+    LateAndFree engines;
+    Engine& late = engines.late;
+    const UpdateSettings past = withDeadline(0.0);
     FrameStats f = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past);
-    const FrameStats whole = free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    const FrameStats whole = engines.free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
     EXPECT_TRUE(f.traversing);
     EXPECT_EQ(f.deferred, 1u);  // its links wait
     EXPECT_GT(f.estimatedError, 0.0);
@@ -233,9 +261,7 @@ TEST(StabilityControlledUpdate, DeadlineStopsTheWorkAndTheRestWaits) {
     const FrameStats idle = late.refinePending();
     EXPECT_EQ(idle.stale, 0u);
     EXPECT_EQ(idle.estimatedError, 0.0);
-    const CoverageResult c = checkCoverage(late, 5u, 200);
-    EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
-    EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
+    engines.expectTheSameSolution();
 }
 
 // The deadline covers the further bounces too: a frame past its deadline
@@ -303,16 +329,12 @@ TEST(StabilityControlledUpdate, DeadlineLeavesBouncesUnsentUntilIdle) {
 // as the same 40 moves unlimited are: the links the object crossed on its
 // way are judged again, and one such move never looks at them.)
 TEST(StabilityControlledUpdate, MovesWhileTheTraversalGoesOnWaitAndCoalesce) {
-    Engine late(roomWithBlock(), coarse());
-    Engine free(roomWithBlock(), coarse());
-    ASSERT_TRUE(late.solve().converged);
-    ASSERT_TRUE(free.solve().converged);
-    UpdateSettings past;
-    past.deadlineSeconds = 0.0;
+    LateAndFree engines;
+    const UpdateSettings past = withDeadline(0.0);
     std::vector<FrameStats> frames;
     for (int k = 1; k <= 40; ++k) {
         const double x = 0.4 * k / 40.0;
-        frames.push_back(late.moveDynamicObject(translation(V(x, 0.0, x / 2.0)), past));
+        frames.push_back(engines.late.moveDynamicObject(translation(V(x, 0.0, x / 2.0)), past));
     }
     EXPECT_TRUE(frames[0].traversing);
     EXPECT_EQ(frames[0].deferred, 1u);
@@ -336,16 +358,12 @@ TEST(StabilityControlledUpdate, MovesWhileTheTraversalGoesOnWaitAndCoalesce) {
     EXPECT_TRUE(frames[found + 2].caughtUp);
     EXPECT_EQ(frames[found + 2].stale, frames[found + 1].stale);
     EXPECT_TRUE(frames[found + 3].traversing) << "a traversal for the moves since";
-    FrameStats idle = late.refinePending();
-    for (int k = 0; k < 10 && idle.deferred + idle.stale + idle.pending + idle.unsent > 0; ++k) idle = late.refinePending();
-    EXPECT_EQ(idle.deferred + idle.stale + idle.pending + idle.unsent, 0u);
+    idleUntilNothingWaits(engines.late);
     for (int k = 1; k <= 40; ++k) {
         const double x = 0.4 * k / 40.0;
-        free.moveDynamicObject(translation(V(x, 0.0, x / 2.0)));
+        engines.free.moveDynamicObject(translation(V(x, 0.0, x / 2.0)));
     }
-    const CoverageResult c = checkCoverage(late, 5u, 200);
-    EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
-    EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
+    engines.expectTheSameSolution();
 }
 
 // A traversal stopped by one frame's deadline and ended in the next, which
@@ -353,13 +371,9 @@ TEST(StabilityControlledUpdate, MovesWhileTheTraversalGoesOnWaitAndCoalesce) {
 // left, and the frame catches up on it on the clock (here all of it). The
 // frame's own move is deferred, for the next traversal.
 TEST(StabilityControlledUpdate, ATraversalEndedWithTimeLeftCatchesUpInItsFrame) {
-    Engine late(roomWithBlock(), coarse());
-    Engine free(roomWithBlock(), coarse());
-    ASSERT_TRUE(late.solve().converged);
-    ASSERT_TRUE(free.solve().converged);
-    UpdateSettings past, ample;
-    past.deadlineSeconds = 0.0;
-    ample.deadlineSeconds = 600.0;
+    LateAndFree engines;
+    Engine& late = engines.late;
+    const UpdateSettings past = withDeadline(0.0), ample = withDeadline(600.0);
     const FrameStats stops = late.moveDynamicObject(translation(V(0.2, 0.0, 0.1)), past);
     EXPECT_TRUE(stops.traversing);
     const FrameStats ends = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), ample);
@@ -373,36 +387,26 @@ TEST(StabilityControlledUpdate, ATraversalEndedWithTimeLeftCatchesUpInItsFrame) 
     const FrameStats next = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), ample);
     EXPECT_EQ(next.deferred, 0u);
     EXPECT_GT(next.spent, 0u);
-    free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    engines.free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
     late.refinePending();
-    const CoverageResult c = checkCoverage(late, 5u, 200);
-    EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
-    EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
+    engines.expectTheSameSolution();
 }
 
 // Anything else that changes links drops a traversal under way (an edit, a
 // choice of another object): nothing it found has changed, and the move
 // waits again from where the links were, for idle time or the next move.
 TEST(StabilityControlledUpdate, AnEditDropsATraversalUnderWayAndTheMoveWaits) {
-    Engine late(roomWithBlock(), coarse());
-    Engine free(roomWithBlock(), coarse());
-    ASSERT_TRUE(late.solve().converged);
-    ASSERT_TRUE(free.solve().converged);
-    UpdateSettings past;
-    past.deadlineSeconds = 0.0;
-    ASSERT_TRUE(late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), past).traversing);
+    LateAndFree engines;
+    Engine& late = engines.late;
+    ASSERT_TRUE(late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), withDeadline(0.0)).traversing);
     const FrameStats edit = late.editMaterial("light", V(20.0), std::nullopt);
     EXPECT_FALSE(edit.traversing);
-    FrameStats idle = late.refinePending();
-    EXPECT_GT(idle.shaftTests, 0u) << "the move's traversal, from the start";
-    for (int k = 0; k < 10 && idle.deferred + idle.stale + idle.pending + idle.unsent > 0; ++k) idle = late.refinePending();
-    EXPECT_EQ(idle.deferred + idle.stale + idle.pending + idle.unsent, 0u);
-    free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
-    free.editMaterial("light", V(20.0), std::nullopt);
-    free.refinePending();
-    const CoverageResult c = checkCoverage(late, 5u, 200);
-    EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
-    EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
+    EXPECT_GT(late.refinePending().shaftTests, 0u) << "the move's traversal, from the start";
+    idleUntilNothingWaits(late);
+    engines.free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    engines.free.editMaterial("light", V(20.0), std::nullopt);
+    engines.free.refinePending();
+    engines.expectTheSameSolution();
 }
 
 // The live estimate is in the units of the measured error (the rms
