@@ -276,8 +276,11 @@ struct Engine::State {
     // leaves that much more. Their pushes and meshing follow the link
     // updates by more than the frame's tail expects (in `two-offices` at
     // 60 fps, a median 2 ms over, up to 6 ms).
+    // At most a quarter of the frame: a frame whose mesh moved to a new
+    // layout (223 ms on the building floor at 30 fps) left the next frames
+    // no time at all.
     double catchUpOver = 0.0;
-    static constexpr double kOverSmoothing = 0.5;
+    static constexpr double kOverSmoothing = 0.5, kMostOver = 0.25;
     // A traversal a deadline stopped (FrameStats::traversing): per object,
     // where its links were when the traversal began. The next frame goes on
     // with it before its own move, which it defers; anything else that
@@ -979,8 +982,11 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         s.updater.countWaiting(stats);
         stats.pending += s.lightLinks.pendingCount();
         s.buildMesh(stats, settings.deadlineSeconds);  // not a frame of the budget's fit: its traversal began before
-        if ((catchingUp || resumed) && settings.deadlineSeconds)
-            s.catchUpOver += State::kOverSmoothing * (stats.totalSeconds - *settings.deadlineSeconds - s.catchUpOver);
+        if ((catchingUp || resumed) && settings.deadlineSeconds) {
+            const double over = std::min(stats.totalSeconds - *settings.deadlineSeconds,
+                                         State::kMostOver * *settings.deadlineSeconds);
+            s.catchUpOver += State::kOverSmoothing * (over - s.catchUpOver);
+        }
         return stats;
     }
     std::vector<ObjectMotion> motions;
