@@ -137,7 +137,7 @@ FrameStats LineSpaceUpdate::goOn(FrameStats stats, const UpdateSettings& setting
         // What else is dirty (a moved light's direct light) is pushed as the
         // clock allows; the rest waits, counted in the estimate.
         touch(pushPull(stats, true));
-        finish(stats, start);
+        finish(stats, start, false);
         return stats;
     }
     startLinkUpdates();
@@ -177,7 +177,7 @@ FrameStats LineSpaceUpdate::goOn(FrameStats stats, const UpdateSettings& setting
     stats.pushPullSeconds = secondsSince(t);
 
     obstacles_.clear();
-    finish(stats, start);
+    finish(stats, start, !resumed);
     return stats;
 }
 
@@ -279,7 +279,7 @@ void LineSpaceUpdate::prunePending() {
     pending_.erase(std::unique(pending_.begin(), pending_.end()), pending_.end());
 }
 
-void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_point start) {
+void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_point start, bool estimate) {
     stats.links = refiner_.activeLinks();
     stats.elements = h_.liveCount();
     countWaiting(stats);
@@ -287,9 +287,7 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     std::vector<ElementId> unpushed = solver_.unpushed();
     std::sort(unpushed.begin(), unpushed.end());
     std::erase_if(lightChanges_, [&](const auto& c) { return !std::binary_search(unpushed.begin(), unpushed.end(), c.first); });
-    // A frame whose traversal goes on: the engine estimates it, with the
-    // moving objects' links.
-    if (!traversing_) stats.estimatedError = estimatedError();
+    if (estimate) stats.estimatedError = estimatedError();
     stats.totalSeconds = secondsSince(start);
 }
 

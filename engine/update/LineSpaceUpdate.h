@@ -113,9 +113,11 @@ public:
     static constexpr double kTraversalMost = 0.8;
     // Goes on with a traversal a deadline stopped, in a new frame on
     // `settings`' deadline, with the objects where it found them: once it
-    // ends, the frame goes on as the one that began it would have (only
-    // found, if the traversal took more than kTraversalShare of this one).
-    // `idle`: a frame of idle time (refinePending's).
+    // ends (and unless that took more than kTraversalShare of this frame),
+    // every link it found waits, stale, and the frame catches up on them on
+    // the clock. `idle`: a frame of idle time (refinePending's). The frame
+    // has no estimated error: the engine makes it, with the moving objects'
+    // links (their moves wait).
     FrameStats resume(const UpdateSettings& settings, bool idle = false);
     bool traversing() const { return traversing_; }
     // Drops a traversal a deadline stopped: nothing it found was changed,
@@ -219,9 +221,9 @@ private:
     // Fig. 6: the first traversal, from the root (visit record 0). It only
     // finds (shaft tests, index ranges) and pulls up the work each visit's
     // links and its groups' line-space children call for (sec. 6.1).
-    // Begun, then gone on with level by level until it ends (true) or, after
-    // a level, the clock passes `stop` (false: traversalLevel_ keeps the
-    // next level).
+    // Begun, then gone on with level by level until it ends (true) or,
+    // after a run of visits, the clock passes `stop` (false: where it is in
+    // its level is kept).
     void beginTraversal();
     bool traverse(std::optional<std::chrono::steady_clock::time_point> stop);
     // Where a traversal under way is: the visits of its current level, how
@@ -271,7 +273,8 @@ private:
     void setDeadline(std::chrono::steady_clock::time_point start, const UpdateSettings& settings);
     // What a budget (kUnlimited: none) leaves after `spent` link updates.
     static std::size_t budgetLeft(std::size_t budget, std::size_t spent);
-    void finish(FrameStats& stats, std::chrono::steady_clock::time_point start);
+    // `estimate` false: the engine makes the frame's estimated error.
+    void finish(FrameStats& stats, std::chrono::steady_clock::time_point start, bool estimate = true);
     // Sec. 6.2: heap key factor for a link whose shaft the object just entered.
     static constexpr double kEnteringBoost = 4.0;
     double heapKey(const Link& l) const;

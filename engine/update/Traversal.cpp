@@ -5,7 +5,7 @@
 // links found so are the candidates. It only finds: the links are updated by
 // the second traversal (ControlledUpdate.cpp), which spends the frame's
 // budget top-down with the work this one pulls up (sec. 6.1). On a deadline
-// it stops between levels and goes on in the next frame (resume).
+// it stops between runs of visits and goes on in the next frame (resume).
 
 #include <algorithm>
 
@@ -89,6 +89,10 @@ bool LineSpaceUpdate::traverse(std::optional<std::chrono::steady_clock::time_poi
     // up to a few milliseconds). At least one run a call, so that frames on
     // a deadline already past still end it.
     std::vector<std::size_t>& level = traversalLevel_;
+    if (level.empty()) {  // ended, its work pulled up, in an earlier call (a frame that only found)
+        traversing_ = false;
+        return true;
+    }
     std::vector<std::vector<std::pair<ElementId, IndexRange>>>& children = childVisits_;
     std::vector<std::size_t> tests;
     for (bool first = true; !level.empty(); first = false) {
