@@ -36,6 +36,7 @@ FrameStats LineSpaceUpdate::chooseObject(const Aabb& box, const IndexRange& rang
                                          const UpdateSettings& settings) {
     layersChanged_ = true;
     meanReflectance_.reset();  // polygons may have moved in the tree
+    carried_.clear();
     unsent_.forget();
     fresh_ = relinked ? std::optional(range) : std::nullopt;
     FrameStats stats = run({{box, box, range}}, settings, false);
@@ -304,6 +305,35 @@ double LineSpaceUpdate::motionShare(const Aabb& from, const Aabb& to) {
     return std::max(glm::length(to.lo - from.lo), glm::length(to.hi - from.hi)) / size;
 }
 
+const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(ElementId top) const {
+    // Freed elements (an id may be another's now) call for new sums.
+    if (carriedReleases_ != h_.releases()) {
+        carried_.clear();
+        carriedReleases_ = h_.releases();
+    }
+    auto [it, made] = carried_.try_emplace(top);
+    if (!made) return it->second;
+    std::vector<double>& power = carriedScratch_;
+    if (power.size() < h_.size()) power.resize(h_.size(), 0.0);
+    std::vector<ElementId> receivers;
+    for (std::vector<ElementId> stack{top}; !stack.empty();) {
+        const HElement& e = h_[stack.back()];
+        stack.pop_back();
+        for (const std::vector<LinkId>* ids : {&e.links, &e.outLinks})
+            for (LinkId id : *ids) {
+                const Link& l = links_[id];
+                const double p = l.live && !l.passive ? heapKey(l) : 0.0;
+                if (!(p > 0.0)) continue;
+                if (power[l.receiver] == 0.0) receivers.push_back(l.receiver);
+                power[l.receiver] += p;
+            }
+        for (ElementId c : e.children) stack.push_back(c);
+    }
+    it->second.reserve(receivers.size());
+    for (ElementId r : receivers) it->second.emplace_back(r, std::exchange(power[r], 0.0));
+    return it->second;
+}
+
 double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, double>>& deferred) const {
     // The power each receiver could still change by: its stale and pending
     // active links (a p-link's transfer is carried by its children), and
@@ -336,14 +366,7 @@ double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, do
     // The links with an end in a deferred object's subtree, in the share of
     // its size it has moved.
     for (const auto& [top, share] : deferred)
-        for (std::vector<ElementId> stack{top}; !stack.empty();) {
-            const HElement& e = h_[stack.back()];
-            stack.pop_back();
-            for (const std::vector<LinkId>* ids : {&e.links, &e.outLinks})
-                for (LinkId id : *ids)
-                    if (active(links_[id])) addPower(links_[id].receiver, share * heapKey(links_[id]));
-            for (ElementId c : e.children) stack.push_back(c);
-        }
+        for (const auto& [r, p] : carriedBy(top)) addPower(r, share * p);
     const HElement& root = h_[h_.root()];
     const double area = root.area, total = area * luminance(root.radiosity);
     const auto clearPower = [&] {
@@ -477,6 +500,7 @@ void LineSpaceUpdate::joinUnsent(ElementId e, std::size_t links) {
 }
 
 void LineSpaceUpdate::prepare() {
+    carried_.clear();
     linkStamp_.assign(links_.slots(), 0);
     staleMark_.assign(links_.slots(), 0);
     refiner_.recordSendersChanged();  // for the sum of what the unsent have to send
@@ -552,7 +576,9 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings, bool i
     followTheLight(settings, stats, left());
     idle_ = false;
     stats.pushPullSeconds = secondsSince(t);
-    finish(stats, start);
+    // A frame of a drag that catches up defers its move: the engine makes
+    // its estimate, with the move (Engine::moveObjects).
+    finish(stats, start, idle);
     return stats;
 }
 
@@ -562,6 +588,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     const auto start = std::chrono::steady_clock::now();
     editStart_ = start;
     meanReflectance_.reset();  // an edit may change reflectance
+    carried_.clear();
     unsent_.forget();
     FrameStats stats;
     const std::size_t budget = settings.budget.value_or(kUnlimited);

@@ -70,6 +70,7 @@ bool LineSpaceUpdate::cutBefore(ElementId s, ElementId r) const {
 }
 
 void LineSpaceUpdate::beginTraversal() {
+    carried_.clear();  // the links it finds are updated after it
     refiner_.sortLinkLists();  // what the last frame appended (links/SourceOrder.h)
     visitCount_ = 0;
     addVisit(h_.root(), h_.range(h_.root()));

@@ -348,6 +348,11 @@ TEST(StabilityControlledUpdate, MovesWhileTheTraversalGoesOnWaitAndCoalesce) {
     }
     ASSERT_LT(found + 3, frames.size()) << "the traversal never ended";
     EXPECT_GT(found, 1u) << "a run of visits a frame";
+    // While the traversal goes on no link changes, and the estimate grows
+    // with how far the object has moved since its links were right (what
+    // its links carry is summed once, then scaled by that share).
+    for (std::size_t k = 1; k <= found; ++k)
+        EXPECT_GT(frames[k].estimatedError, frames[k - 1].estimatedError) << "frame " << k;
     EXPECT_TRUE(frames[found].traversing) << "what it found is kept";
     EXPECT_GT(frames[found].shaftTests, 0u);
     EXPECT_EQ(frames[found].stale, 0u);
