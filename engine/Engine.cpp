@@ -231,9 +231,12 @@ struct Engine::State {
     UpdateSettings forUpdater(const UpdateSettings& settings, double elapsed) {
         // The mesh's time varies with more than the leaves (how many
         // polygons they lie in, how much smoothing): its fixed part is taken
-        // at the 80th percentile of the frames, not their mean.
+        // at the 80th percentile of the frames, not their mean. A new layout
+        // the last mesh left waiting is made in this one whatever its
+        // deadline (SnapshotCache::resizesWaited): its time is left for it.
         const auto [base, perLeaf] = meshCost.model();
-        updater.setFrameTail({base + meshCost.spread(), perLeaf});
+        const double owed = meshParts.resizesWaited ? meshParts.relayoutSeconds : 0.0;
+        updater.setFrameTail({base + meshCost.spread() + owed, perLeaf});
         UpdateSettings u = settings;
         if (u.deadlineSeconds) u.deadlineSeconds = *u.deadlineSeconds - elapsed;
         return u;

@@ -67,7 +67,8 @@ struct SnapshotCache {
     // patch takes 30).
     double patchSecondsPerPart = 2e-6;
     double walkSeconds = 0.0;
-    // What moving the mesh to a new layout costs (a part changed size), and
+    // What a patch that moves the mesh to a new layout (a part changed
+    // size) costs beyond one that does not, and
     // whether the last build with a stop left such parts for later: the
     // next one then meshes them whatever its stop, so they are never left
     // for good.

@@ -178,6 +178,52 @@ TEST(RadiositySnapshot, CachedTilesAcrossResizesAndAStopGiveTheMeshMadeFromScrat
     expectSame("the next build");
 }
 
+// A build after one that left resized parts waiting makes the new layout
+// whatever its stop, so the other parts leave it the time it takes: with a
+// new layout taking longer than the stop leaves, only kLeastRemeshed parts
+// (or a few more) go ahead, though the stop leaves ample time for them
+// alone. The next build without a stop catches up.
+TEST(RadiositySnapshot, ABuildThatOwesANewLayoutLeavesItsTime) {
+    using V = glm::dvec3;
+    Scene s;
+    const auto m = test::addMaterial(s, V(0.5), V(0.0));
+    std::vector<std::array<V, 4>> tiles;
+    for (int j = 0; j < 10; ++j)
+        for (int i = 0; i < 10; ++i)
+            tiles.push_back({V(i, j, 0), V(i + 1, j, 0), V(i + 1, j + 1, 0), V(i, j + 1, 0)});
+    test::addQuadObject(s, "wall", m, tiles);
+    Hierarchy h(s, 1e-3);
+    const auto paint = [&](double scale) {
+        for (std::uint32_t p = 0; p < h.polygonCount(); ++p)
+            for (std::vector<ElementId> stack{h.polygonElement(p)}; !stack.empty();) {
+                const ElementId e = stack.back();
+                stack.pop_back();
+                h[e].radiosity = scale * V(1.0, 0.5, 0.25);
+                stack.insert(stack.end(), h[e].children.begin(), h[e].children.end());
+            }
+    };
+    paint(1.0);
+    SnapshotCache cache;
+    MeshSnapshot cached;
+    ASSERT_EQ(makeRadiositySnapshot(s, h, cached, cache), 0u);
+    const auto inAMinute = [] { return std::chrono::steady_clock::now() + std::chrono::minutes(1); };
+    for (std::uint32_t p : {11u, 55u}) h.subdivide(h.polygonElement(p));
+    paint(1.5);
+    cache.relayoutSeconds = 3600.0;  // as if a new layout took an hour
+    EXPECT_EQ(makeRadiositySnapshot(s, h, cached, cache, inAMinute()), 2u) << "the resized tiles wait";
+    EXPECT_TRUE(cache.resizesWaited);
+    paint(2.0);
+    const std::size_t left = makeRadiositySnapshot(s, h, cached, cache, inAMinute());
+    // "A few more": parts meshed at once, in chunks of 16 (at most 7 here).
+    EXPECT_GE(left, 100u - kLeastRemeshed - 8u);
+    EXPECT_LE(left, 100u - kLeastRemeshed);
+    EXPECT_EQ(makeRadiositySnapshot(s, h, cached, cache), 0u);
+    const MeshSnapshot fresh = makeRadiositySnapshot(s, h);
+    EXPECT_EQ(cached.positions, fresh.positions);
+    EXPECT_EQ(cached.colors, fresh.colors);
+    EXPECT_EQ(cached.indices, fresh.indices);
+}
+
 // Two tiles of one wall that meet edge to edge: the vertices on the shared
 // edge show the area-weighted mean of both sides, the same in both tiles'
 // meshes, so the tiling does not show; a vertex inside a tile keeps its own.
