@@ -487,10 +487,10 @@ std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats, bool onTheCl
     return visited;
 }
 
-double LineSpaceUpdate::shareThatFits(std::size_t changedLeaves, double work) const {
+double LineSpaceUpdate::shareThatFits(std::size_t changedLeaves, double work, double first) const {
     if (!deadline_) return 1.0;
     const double left = std::chrono::duration<double>(*deadline_ - std::chrono::steady_clock::now()).count() -
-                        tail_.seconds(changedLeaves);
+                        tail_.seconds(changedLeaves) - first;
     if (!(left > 0.0)) return 0.0;
     return work > left ? left / work : 1.0;
 }
