@@ -1014,6 +1014,12 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     stats.pending += s.lightLinks.pendingCount();
     stats.updateSeconds += choosingSeconds;
     s.buildMesh(stats, settings.deadlineSeconds);
+    // Links the frame's budget left stale are caught up on first, as those
+    // of a traversal over frames are: otherwise each frame's traversal
+    // finds more than its budget updates, and they pile up (in `office` at
+    // 30 fps 46,000 to 51,000 stale links in every frame, the light 0.2%
+    // to 1.7% rms from full solves and growing frame after frame).
+    if (allowDeferral && settings.deadlineSeconds && !stats.traversing && stats.stale > 0) s.catchUpFirst = true;
     // The budget's fit leaves out the further bounces: on a deadline they
     // fill what the frame has left, so that frames that spent few link
     // updates take as long as those that spent many, and a fit of the whole

@@ -397,6 +397,36 @@ TEST(StabilityControlledUpdate, ATraversalEndedWithTimeLeftCatchesUpInItsFrame) 
     engines.expectTheSameSolution();
 }
 
+// A frame on a deadline whose budget leaves links stale: the next frame
+// catches up on them first (the deadline, not the budget, deciding how
+// many: here all), with the block where they were found, and defers its own
+// move; the one after traverses from where the links were last updated.
+// Left to the budget, frame after frame, they piled up (`office` at 30 fps).
+TEST(StabilityControlledUpdate, LinksABudgetLeftStaleAreCaughtUpOnBeforeTheNextMove) {
+    LateAndFree engines;
+    Engine& late = engines.late;
+    UpdateSettings starved = withDeadline(600.0);
+    starved.budget = 10;
+    const FrameStats first = late.moveDynamicObject(translation(V(0.2, 0.0, 0.1)), starved);
+    ASSERT_FALSE(first.traversing);
+    ASSERT_GT(first.stale, 0u);
+    EXPECT_LE(first.spent, 10u);
+    const FrameStats second = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), starved);
+    EXPECT_TRUE(second.caughtUp);
+    EXPECT_EQ(second.stale, 0u);
+    EXPECT_GT(second.spent, 10u);
+    EXPECT_EQ(second.shaftTests, 0u) << "no traversal: the move waits";
+    EXPECT_EQ(second.deferred, 1u);
+    const FrameStats third = late.moveDynamicObject(translation(V(0.4, 0.0, 0.2)), starved);
+    EXPECT_FALSE(third.caughtUp);
+    EXPECT_GT(third.shaftTests, 0u);
+    EXPECT_EQ(third.deferred, 0u);
+    idleUntilNothingWaits(late);
+    engines.free.moveDynamicObject(translation(V(0.2, 0.0, 0.1)));
+    engines.free.moveDynamicObject(translation(V(0.4, 0.0, 0.2)));
+    engines.expectTheSameSolution();
+}
+
 // Anything else that changes links drops a traversal under way (an edit, a
 // choice of another object): nothing it found has changed, and the move
 // waits again from where the links were, for idle time or the next move.
