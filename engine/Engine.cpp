@@ -218,6 +218,7 @@ struct Engine::State {
     // are meshed again), so that a frame on a deadline leaves it the time
     // it needs. The first guess: measured on `office`.
     BudgetControl meshCost{1e-6};
+    static constexpr double kMostOwed = 0.25;
     // When light links stop refining in a frame that began at `start`: half
     // of its deadline, after `elapsed` seconds spent before it.
     std::optional<LightLinks::Clock::time_point> lightDeadline(std::chrono::steady_clock::time_point start,
@@ -233,9 +234,13 @@ struct Engine::State {
         // polygons they lie in, how much smoothing): its fixed part is taken
         // at the 80th percentile of the frames, not their mean. A new layout
         // the last mesh left waiting is made in this one whatever its
-        // deadline (SnapshotCache::resizesWaited): its time is left for it.
+        // deadline (SnapshotCache::resizesWaited): its time is left for it,
+        // up to a quarter of the frame (the building floor's take 100 to
+        // 150 ms, more than a frame at 30 fps: left in full, the frames that
+        // owed one did nothing else).
         const auto [base, perLeaf] = meshCost.model();
-        const double owed = meshParts.resizesWaited ? meshParts.relayoutSeconds : 0.0;
+        double owed = meshParts.resizesWaited ? meshParts.relayoutSeconds : 0.0;
+        if (settings.deadlineSeconds) owed = std::min(owed, kMostOwed * *settings.deadlineSeconds);
         updater.setFrameTail({base + meshCost.spread() + owed, perLeaf});
         UpdateSettings u = settings;
         if (u.deadlineSeconds) u.deadlineSeconds = *u.deadlineSeconds - elapsed;
