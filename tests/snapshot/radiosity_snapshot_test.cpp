@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <optional>
 #include <tuple>
 
 #include "hierarchy/Hierarchy.h"
@@ -123,59 +124,73 @@ TEST(RadiositySnapshot, CachedPartsGiveTheMeshMadeFromScratch) {
     expectSame("nothing changed");
 }
 
+// A wall of 10 x 10 unit tiles meeting edge to edge (their seams smoothed),
+// its hierarchy, and a mesh built from a cache frame after frame.
+struct TiledWall {
+    Scene scene = [] {
+        using V = glm::dvec3;
+        Scene s;
+        const auto m = test::addMaterial(s, V(0.5), V(0.0));
+        std::vector<std::array<V, 4>> tiles;
+        for (int j = 0; j < 10; ++j)
+            for (int i = 0; i < 10; ++i)
+                tiles.push_back({V(i, j, 0), V(i + 1, j, 0), V(i + 1, j + 1, 0), V(i, j + 1, 0)});
+        test::addQuadObject(s, "wall", m, tiles);
+        return s;
+    }();
+    Hierarchy h{scene, 1e-3};
+    SnapshotCache cache;
+    MeshSnapshot cached;
+    // Every element a radiosity that varies from element to element, times `scale`.
+    void paint(double scale) {
+        for (std::uint32_t p = 0; p < h.polygonCount(); ++p)
+            for (std::vector<ElementId> stack{h.polygonElement(p)}; !stack.empty();) {
+                const ElementId e = stack.back();
+                stack.pop_back();
+                h[e].radiosity = scale * glm::dvec3(1.0 + 0.1 * (e % 7), 0.5, 0.25);
+                stack.insert(stack.end(), h[e].children.begin(), h[e].children.end());
+            }
+    }
+    std::size_t build(std::optional<std::chrono::steady_clock::time_point> stop = std::nullopt) {
+        return makeRadiositySnapshot(scene, h, cached, cache, stop);
+    }
+    // A build without a stop leaves nothing, and gives the mesh made from scratch.
+    void expectTheMeshMadeFromScratch(const char* after) {
+        EXPECT_EQ(build(), 0u) << after;
+        const MeshSnapshot fresh = makeRadiositySnapshot(scene, h);
+        ASSERT_EQ(cached.positions, fresh.positions) << after;
+        ASSERT_EQ(cached.colors, fresh.colors) << after;
+        ASSERT_EQ(cached.indices, fresh.indices) << after;
+    }
+};
+
 // A wall of 10 x 10 tiles meeting edge to edge (their seams smoothed): the
 // cached mesh is the mesh made from scratch after tiles are subdivided (the
 // parts change size and the mesh moves to a new layout) and their children
 // removed; and a build whose stop has passed meshes kLeastRemeshed tiles or
 // a few more, keeps the others as they were, and the next build catches up.
 TEST(RadiositySnapshot, CachedTilesAcrossResizesAndAStopGiveTheMeshMadeFromScratch) {
-    using V = glm::dvec3;
-    Scene s;
-    const auto m = test::addMaterial(s, V(0.5), V(0.0));
-    std::vector<std::array<V, 4>> tiles;
-    for (int j = 0; j < 10; ++j)
-        for (int i = 0; i < 10; ++i)
-            tiles.push_back({V(i, j, 0), V(i + 1, j, 0), V(i + 1, j + 1, 0), V(i, j + 1, 0)});
-    test::addQuadObject(s, "wall", m, tiles);
-    Hierarchy h(s, 1e-3);
-    const auto paint = [&](double scale) {
-        for (std::uint32_t p = 0; p < h.polygonCount(); ++p)
-            for (std::vector<ElementId> stack{h.polygonElement(p)}; !stack.empty();) {
-                const ElementId e = stack.back();
-                stack.pop_back();
-                h[e].radiosity = scale * V(1.0 + 0.1 * (e % 7), 0.5, 0.25);
-                stack.insert(stack.end(), h[e].children.begin(), h[e].children.end());
-            }
-    };
-    paint(1.0);
-    SnapshotCache cache;
-    MeshSnapshot cached;
-    const auto expectSame = [&](const char* after) {
-        EXPECT_EQ(makeRadiositySnapshot(s, h, cached, cache), 0u) << after;
-        const MeshSnapshot fresh = makeRadiositySnapshot(s, h);
-        ASSERT_EQ(cached.positions, fresh.positions) << after;
-        ASSERT_EQ(cached.colors, fresh.colors) << after;
-        ASSERT_EQ(cached.indices, fresh.indices) << after;
-    };
-    expectSame("the first build");
-    for (std::uint32_t p : {11u, 12u, 55u, 98u}) h.subdivide(h.polygonElement(p));
-    h.subdivide(h[h.polygonElement(12)].children[1]);
-    paint(1.5);
-    expectSame("subdivisions");
-    h.removeChildren(h.polygonElement(12));
-    paint(1.7);
-    expectSame("children removed");
+    TiledWall w;
+    w.paint(1.0);
+    w.expectTheMeshMadeFromScratch("the first build");
+    for (std::uint32_t p : {11u, 12u, 55u, 98u}) w.h.subdivide(w.h.polygonElement(p));
+    w.h.subdivide(w.h[w.h.polygonElement(12)].children[1]);
+    w.paint(1.5);
+    w.expectTheMeshMadeFromScratch("subdivisions");
+    w.h.removeChildren(w.h.polygonElement(12));
+    w.paint(1.7);
+    w.expectTheMeshMadeFromScratch("children removed");
 
-    paint(2.0);
-    const MeshSnapshot before = cached;
-    const std::size_t left = makeRadiositySnapshot(s, h, cached, cache, std::chrono::steady_clock::now() - std::chrono::seconds(1));
+    w.paint(2.0);
+    const MeshSnapshot before = w.cached;
+    const std::size_t left = w.build(std::chrono::steady_clock::now() - std::chrono::seconds(1));
     EXPECT_GT(left, 0u);
     EXPECT_LE(left, 100u - kLeastRemeshed);
     // The tiles left keep their colours: as many vertices as before are unchanged.
     std::size_t same = 0;
-    for (std::size_t v = 0; v < cached.colors.size(); ++v) same += cached.colors[v] == before.colors[v];
+    for (std::size_t v = 0; v < w.cached.colors.size(); ++v) same += w.cached.colors[v] == before.colors[v];
     EXPECT_GT(same, 0u);
-    expectSame("the next build");
+    w.expectTheMeshMadeFromScratch("the next build");
 }
 
 // A build after one that left resized parts waiting makes the new layout
@@ -184,44 +199,21 @@ TEST(RadiositySnapshot, CachedTilesAcrossResizesAndAStopGiveTheMeshMadeFromScrat
 // (or a few more) go ahead, though the stop leaves ample time for them
 // alone. The next build without a stop catches up.
 TEST(RadiositySnapshot, ABuildThatOwesANewLayoutLeavesItsTime) {
-    using V = glm::dvec3;
-    Scene s;
-    const auto m = test::addMaterial(s, V(0.5), V(0.0));
-    std::vector<std::array<V, 4>> tiles;
-    for (int j = 0; j < 10; ++j)
-        for (int i = 0; i < 10; ++i)
-            tiles.push_back({V(i, j, 0), V(i + 1, j, 0), V(i + 1, j + 1, 0), V(i, j + 1, 0)});
-    test::addQuadObject(s, "wall", m, tiles);
-    Hierarchy h(s, 1e-3);
-    const auto paint = [&](double scale) {
-        for (std::uint32_t p = 0; p < h.polygonCount(); ++p)
-            for (std::vector<ElementId> stack{h.polygonElement(p)}; !stack.empty();) {
-                const ElementId e = stack.back();
-                stack.pop_back();
-                h[e].radiosity = scale * V(1.0, 0.5, 0.25);
-                stack.insert(stack.end(), h[e].children.begin(), h[e].children.end());
-            }
-    };
-    paint(1.0);
-    SnapshotCache cache;
-    MeshSnapshot cached;
-    ASSERT_EQ(makeRadiositySnapshot(s, h, cached, cache), 0u);
+    TiledWall w;
+    w.paint(1.0);
+    w.expectTheMeshMadeFromScratch("the first build");
     const auto inAMinute = [] { return std::chrono::steady_clock::now() + std::chrono::minutes(1); };
-    for (std::uint32_t p : {11u, 55u}) h.subdivide(h.polygonElement(p));
-    paint(1.5);
-    cache.relayoutSeconds = 3600.0;  // as if a new layout took an hour
-    EXPECT_EQ(makeRadiositySnapshot(s, h, cached, cache, inAMinute()), 2u) << "the resized tiles wait";
-    EXPECT_TRUE(cache.resizesWaited);
-    paint(2.0);
-    const std::size_t left = makeRadiositySnapshot(s, h, cached, cache, inAMinute());
+    for (std::uint32_t p : {11u, 55u}) w.h.subdivide(w.h.polygonElement(p));
+    w.paint(1.5);
+    w.cache.relayoutSeconds = 3600.0;  // as if a new layout took an hour
+    EXPECT_EQ(w.build(inAMinute()), 2u) << "the resized tiles wait";
+    EXPECT_TRUE(w.cache.resizesWaited);
+    w.paint(2.0);
+    const std::size_t left = w.build(inAMinute());
     // "A few more": parts meshed at once, in chunks of 16 (at most 7 here).
     EXPECT_GE(left, 100u - kLeastRemeshed - 8u);
     EXPECT_LE(left, 100u - kLeastRemeshed);
-    EXPECT_EQ(makeRadiositySnapshot(s, h, cached, cache), 0u);
-    const MeshSnapshot fresh = makeRadiositySnapshot(s, h);
-    EXPECT_EQ(cached.positions, fresh.positions);
-    EXPECT_EQ(cached.colors, fresh.colors);
-    EXPECT_EQ(cached.indices, fresh.indices);
+    w.expectTheMeshMadeFromScratch("the build after");
 }
 
 // Two tiles of one wall that meet edge to edge: the vertices on the shared
