@@ -272,7 +272,8 @@ struct Engine::State {
     };
     std::map<std::uint32_t, Deferred> deferred;
     // The last frame ended a traversal and left stale links (FrameStats::
-    // resumed or caughtUp): the next move's frame first updates them (on
+    // resumed or caughtUp), or its budget left some: the next move's frame
+    // first updates them (on
     // the clock, as idle time would), with the objects still where they
     // were found, and then defers its own move; the traversal after the
     // catch-up covers the moves since.
@@ -878,7 +879,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
                             settings.deadlineSeconds && choosingSeconds == 0.0;
     FrameStats caught;
     if (catchingUp) {
-        UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds + std::max(0.0, s.catchUpOver));
+        UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds + s.catchUpOver);
         u.budget.reset();
         caught = s.updater.refinePending(u, false);
         s.catchUpFirst = caught.stale > 0 && caught.spent > 0;
@@ -893,7 +894,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // on.
     const bool resumed = !s.finding.empty();
     if (resumed) {
-        UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds + choosingSeconds + std::max(0.0, s.catchUpOver));
+        UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds + choosingSeconds + s.catchUpOver);
         if (settings.deadlineSeconds) u.budget.reset();  // as in a catch-up: the deadline governs
         caught = s.updater.resume(u);
         if (!caught.traversing) {

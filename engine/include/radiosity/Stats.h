@@ -125,6 +125,8 @@ struct FrameStats {
     // stale, and catches up on them first (resumed, then caughtUp in the
     // frames after while stale links are left) and defers its own move.
     bool foundOnly = false;
+    // On a deadline: the frame first updated stale links (a traversal's,
+    // or those the last frame's budget left), then deferred its own move.
     bool caughtUp = false;
     // On a deadline: the frame's traversal did not end in the time it may
     // take of the frame (kTraversalMost), and the next frame goes on with
