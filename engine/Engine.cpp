@@ -273,10 +273,9 @@ struct Engine::State {
     std::map<std::uint32_t, Deferred> deferred;
     // The last frame ended a traversal and left stale links (FrameStats::
     // resumed or caughtUp), or its budget left some: the next move's frame
-    // first updates them (on
-    // the clock, as idle time would), with the objects still where they
-    // were found, and then defers its own move; the traversal after the
-    // catch-up covers the moves since.
+    // first updates them (on the clock, as idle time would), with the
+    // objects still where they were found, and then defers its own move;
+    // the traversal after the catch-up covers the moves since.
     bool catchUpFirst = false;
     double lastMoveSeconds = 0.0;  // what the last move took (the catch-up leaves it that time)
     // The time frames that catch up or go on with a traversal leave for
