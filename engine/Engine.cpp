@@ -20,6 +20,7 @@
 #include "refine/Surroundings.h"
 #include "snapshot/Sampling.h"
 #include "solve/Closure.h"
+#include "solve/ClusterExposure.h"
 #include "solve/Diagnosis.h"
 #include "solve/EnergyAudit.h"
 #include "solve/Solver.h"
@@ -306,6 +307,15 @@ struct Engine::State {
     // A frame in which objects' links wait for their moves (being found, or
     // deferred): how many, and the estimate with their links in the share
     // of its size each object has moved since they were last updated.
+    // The clusters whose exposure what moved may change are measured again;
+    // where it changed, their light divides anew: their arrivals are summed
+    // again and pushed.
+    void measureExposureAround(std::span<const ExposureMotion> motions, std::span<const ElementId> also = {}) {
+        for (ElementId e : rad::measureExposureAround(hierarchy, rays, motions, also)) {
+            hierarchy.shape(e).ownValid = false;
+            refiner.markDirty(e);
+        }
+    }
     void countWaitingMoves(FrameStats& f) {
         std::map<std::uint32_t, Aabb> since;
         for (const auto& [object, d] : finding) since.emplace(object, d.box);
@@ -628,6 +638,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
         measureClosure(s.scene, s.rays, s.allPolygons(), closure);
         s.solver.setClosure(std::move(closure));
     }
+    measureExposure(s.hierarchy, s.rays);
     // Radiosity starts at emission and direct light, so the first
     // refinement sees the lights.
     s.solver.pushPull();
@@ -766,9 +777,14 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
     s.abandonFinding();  // its links change under a traversal under way
     // The layers first: the object's new links split their visibility by them.
     s.chooseDynamic(object);
+    std::vector<ElementId> left = s.hierarchy.ancestorsBelowRoot(cluster);  // their shapes are built again
+    left.push_back(s.hierarchy.root());
     const ReinsertionStats r = reinsertUnderRoot(s.hierarchy, s.links, s.refiner, cluster);
     s.meshValid = false;
-    if (!s.solved) return {};
+    if (!s.solved) return {};  // the solve measures every cluster's exposure
+    const Aabb objectBox = s.scene.objectBounds(*object);
+    const ExposureMotion stays{cluster, objectBox, objectBox};
+    s.measureExposureAround(std::span(&stays, 1), left);
     const double reinsertSeconds = secondsSince(start);
     // The links around it: their rays that it blocks move from the static
     // part of the visibility to the dynamic one.
@@ -1009,20 +1025,32 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     }
     std::vector<ObjectMotion> motions;
     std::vector<Aabb> obstacles;
+    // The clusters' exposure, from where the links were last updated (a
+    // deferred move's frames leave it, as they leave the links).
+    std::vector<ExposureMotion> exposureMotions;
     for (const auto& [object, d] : from) {
-        const glm::dmat4 oldToNew = s.scene.objects[object].worldFromLocal * glm::inverse(d.world);
+        const glm::dmat4& world = s.scene.objects[object].worldFromLocal;
+        const glm::dmat4 oldToNew = world * glm::inverse(d.world);
         for (const Aabb& box : motionObstacles(s.scene, object, d.box, oldToNew)) obstacles.push_back(box);
         motions.push_back({d.box, s.scene.objectBounds(object), s.hierarchy.range(s.hierarchy.objectCluster(object))});
+        const glm::dmat3 turn = glm::dmat3(world) - glm::dmat3(d.world);
+        const bool turned = std::max({glm::length(turn[0]), glm::length(turn[1]), glm::length(turn[2])}) >
+                            1e-12 * std::max(1.0, glm::length(glm::dmat3(world)[0]));
+        exposureMotions.push_back({s.hierarchy.objectCluster(object), d.box, s.scene.objectBounds(object),
+                                   glm::dvec3(world[3]) - glm::dvec3(d.world[3]), turned});
     }
+    const auto exposureStart = std::chrono::steady_clock::now();
+    s.measureExposureAround(exposureMotions);
+    const double movedSeconds = moveSeconds + secondsSince(exposureStart);  // the move's part of the frame
     s.deferred.clear();
     s.updater.setObstacles(std::move(obstacles));
-    FrameStats stats = s.updater.update(motions, s.forUpdater(settings, moveSeconds + choosingSeconds));
+    FrameStats stats = s.updater.update(motions, s.forUpdater(settings, movedSeconds + choosingSeconds));
     if (stats.traversing) {
         s.finding = std::move(from);
         s.countWaitingMoves(stats);
     }
-    stats.moveSeconds = moveSeconds;
-    stats.totalSeconds += moveSeconds + choosingSeconds;
+    stats.moveSeconds = movedSeconds;
+    stats.totalSeconds += movedSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();
     stats.updateSeconds += choosingSeconds;
     s.buildMesh(stats, settings.deadlineSeconds);

@@ -33,6 +33,23 @@ double ClusterShape::projectedArea(const glm::dvec3& dir) const {
     return a;
 }
 
+void ClusterShape::arrivalWeights(const glm::dvec3& u, std::array<double, kMaxFacets>& w) const {
+    double projected = 0.0, exposed = 0.0;
+    for (int k = 0; k < facetCount(); ++k) {
+        const double c = std::max(0.0, glm::dot(facets[k].normal, u));
+        w[k] = c * facets[k].exposure;
+        projected += facets[k].area * c;
+        exposed += facets[k].area * w[k];
+    }
+    // Nothing exposed that faces u (or every exposure 0): by orientation alone.
+    if (!(exposed > 1e-6 * projected)) {
+        for (int k = 0; k < facetCount(); ++k) w[k] = std::max(0.0, glm::dot(facets[k].normal, u));
+        return;
+    }
+    const double s = projected / exposed;
+    for (int k = 0; k < facetCount(); ++k) w[k] *= s;
+}
+
 glm::dvec3 ClusterShape::radiosityToward(std::span<const Facet> facets, const glm::dvec3& dir,
                                          std::span<const glm::dvec3> powers) {
     glm::dvec3 sent(0.0);
@@ -137,7 +154,7 @@ void buildShape(std::span<const ShapePart> children, ClusterShape& shape) {
                 fallback = children[c].facets[i - seen].normal;
                 break;
             }
-        shape.facets[k] = {normalOf(merged[k], fallback), merged[k].area};
+        shape.facets[k] = {normalOf(merged[k], fallback), merged[k].area, 1.0};
     }
     shape.childFacet.assign(owner.begin(), owner.end());
 

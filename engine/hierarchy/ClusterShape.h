@@ -42,6 +42,9 @@ struct ClusterShape {
     struct Facet {
         glm::dvec3 normal{0.0};
         double area = 0.0;
+        // The share of the facet's area that light from outside the
+        // cluster's box can reach (solve/ClusterExposure.h); 1 until measured.
+        double exposure = 1.0;
     };
     // A visibility sample point: 20 bytes, 16 per cluster (it was 32 and
     // the samples were a quarter of a building floor's cluster memory). The
@@ -91,6 +94,9 @@ struct ClusterShape {
     // For each child in order, and each facet of that child (one for a
     // surface), the facet of this cluster it belongs to.
     std::vector<std::uint8_t> childFacet;
+    // The facets' exposure is measured (solve/ClusterExposure.h): false
+    // until then, and again when they regroup.
+    bool exposureMeasured = false;
 
     std::vector<glm::dvec3> power;     // per facet: sum of B A over its members
     std::vector<glm::dvec3> gathered;  // the power the receivers of its links hold
@@ -105,6 +111,12 @@ struct ClusterShape {
 
     // sum_k A_k max(0, n_k . dir), dir a unit vector.
     double projectedArea(const glm::dvec3& dir) const;
+    // How the light arriving from direction u (unit, toward the source)
+    // divides among the facets: facet k takes w_k per unit of its area,
+    // c_k e_k s with c_k = max(0, n_k . u), e_k its exposure and s such that
+    // sum_k A_k w_k = sum_k A_k c_k (the cluster catches what its projected
+    // area does). Facets that face away take 0.
+    void arrivalWeights(const glm::dvec3& u, std::array<double, kMaxFacets>& w) const;
     // The radiosity the cluster sends toward dir (unit): the facets' powers
     // weighted by their projected areas, over the projected area; zero when
     // no facet faces dir.

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -294,7 +295,7 @@ void Hierarchy::finishCluster(ElementId id, bool turned) {
         const HElement& child = elements_[k];
         if (child.isSurface()) {
             const Polygon& p = scene_.polygons[child.polygon];
-            surfaceFacets.push_back({child.normal, child.area});
+            surfaceFacets.push_back({child.normal, child.area, 1.0});
             auto& samples = surfaceSamples.emplace_back();
             const auto& uv = polygonSampleParams(p.vertexCount);
             const std::uint32_t normal = ClusterShape::Sample::encode(child.normal);
@@ -309,11 +310,19 @@ void Hierarchy::finishCluster(ElementId id, bool turned) {
     ClusterShape& shape = shapes_[c.shape];
     const int facetsBefore = shape.facetCount();
     const std::vector<std::uint8_t> mapBefore = shape.childFacet;
+    std::array<double, ClusterShape::kMaxFacets> exposureBefore{};
+    for (int k = 0; k < facetsBefore; ++k) exposureBefore[k] = shape.facets[k].exposure;
     buildShape(parts, shape);
     pullPower(id);
     // What receivers hold stays valid while the facets stand for the same
     // surfaces (a rigid move); otherwise it starts from the current powers.
-    if (shape.facetCount() != facetsBefore || shape.childFacet != mapBefore) shape.gathered = shape.power;
+    // So does the facets' exposure until it is measured again (the engine
+    // measures the clusters a move may change: solve/ClusterExposure.h).
+    if (shape.facetCount() != facetsBefore || shape.childFacet != mapBefore) {
+        shape.gathered = shape.power;
+        shape.exposureMeasured = false;
+    } else
+        for (int k = 0; k < facetsBefore; ++k) shape.facets[k].exposure = exposureBefore[k];
     shape.ownValid = false;  // its facets and centre moved: summed again from its links
 }
 

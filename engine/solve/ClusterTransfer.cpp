@@ -167,10 +167,15 @@ void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
         // receiver taken as -u (the same numbers: it is u's negation, exactly).
         const HElement& s = h[l.source];
         const glm::dvec3 sent = s.isSurface() ? s.gathered : h.shape(l.source).radiosityToward(-u, h.shape(l.source).gathered);
+        // The light by exposure (ClusterShape::arrivalWeights); the view the
+        // link covers, which the energy guard and the fill read, by
+        // orientation: a hidden facet's view is covered, and lit by nothing.
+        std::array<double, ClusterShape::kMaxFacets> w;
+        shape.arrivalWeights(u, w);
         for (int k = 0; k < shape.facetCount(); ++k) {
             const double c = glm::dot(shape.facets[k].normal, u);
             if (c <= 0.0) continue;  // one-sided: facing away, it gets none
-            arrivals.irradiance[k] += c * l.gathered * sent;
+            arrivals.irradiance[k] += w[k] * l.gathered * sent;
             arrivals.formFactorSum[k] += c * l.gathered;
         }
     }
@@ -179,11 +184,10 @@ void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
 void addTransfer(Hierarchy& h, ElementId cluster, ElementId source, const glm::dvec3& irradiance) {
     ClusterShape& shape = h.shape(cluster);
     if (!shape.ownValid) return;
-    const glm::dvec3 u = centreDirection(h, cluster, source);
-    for (int k = 0; k < shape.facetCount(); ++k) {
-        const double c = glm::dot(shape.facets[k].normal, u);
-        if (c > 0.0) shape.ownIrradiance[k] += c * irradiance;
-    }
+    std::array<double, ClusterShape::kMaxFacets> w;
+    shape.arrivalWeights(centreDirection(h, cluster, source), w);
+    for (int k = 0; k < shape.facetCount(); ++k)
+        if (w[k] > 0.0) shape.ownIrradiance[k] += w[k] * irradiance;
 }
 
 FacetArrivals ChildArrivals::cluster(ElementId child) {
