@@ -154,7 +154,7 @@ void buildShape(std::span<const ShapePart> children, ClusterShape& shape) {
                 fallback = children[c].facets[i - seen].normal;
                 break;
             }
-        shape.facets[k] = {normalOf(merged[k], fallback), merged[k].area, 1.0};
+        shape.facets[k] = {normalOf(merged[k], fallback), merged[k].area, 1.0f, 0};
     }
     shape.childFacet.assign(owner.begin(), owner.end());
 

@@ -43,8 +43,12 @@ struct ClusterShape {
         glm::dvec3 normal{0.0};
         double area = 0.0;
         // The share of the facet's area that light from outside the
-        // cluster's box can reach (solve/ClusterExposure.h); 1 until measured.
-        double exposure = 1.0;
+        // cluster's box can reach (solve/ClusterExposure.h); 1 until
+        // measured. And which of the rays that measured it the static
+        // layer blocks: a move measures again only the dynamic part of a
+        // cluster that did not move.
+        float exposure = 1.0f;
+        std::uint16_t staticBlocked = 0;
     };
     // A visibility sample point: 20 bytes, 16 per cluster (it was 32 and
     // the samples were a quarter of a building floor's cluster memory). The

@@ -295,7 +295,7 @@ void Hierarchy::finishCluster(ElementId id, bool turned) {
         const HElement& child = elements_[k];
         if (child.isSurface()) {
             const Polygon& p = scene_.polygons[child.polygon];
-            surfaceFacets.push_back({child.normal, child.area, 1.0});
+            surfaceFacets.push_back({child.normal, child.area, 1.0f, 0});
             auto& samples = surfaceSamples.emplace_back();
             const auto& uv = polygonSampleParams(p.vertexCount);
             const std::uint32_t normal = ClusterShape::Sample::encode(child.normal);
@@ -310,8 +310,8 @@ void Hierarchy::finishCluster(ElementId id, bool turned) {
     ClusterShape& shape = shapes_[c.shape];
     const int facetsBefore = shape.facetCount();
     const std::vector<std::uint8_t> mapBefore = shape.childFacet;
-    std::array<double, ClusterShape::kMaxFacets> exposureBefore{};
-    for (int k = 0; k < facetsBefore; ++k) exposureBefore[k] = shape.facets[k].exposure;
+    std::array<ClusterShape::Facet, ClusterShape::kMaxFacets> facetsBeforeBuild{};
+    std::copy(shape.facets.begin(), shape.facets.end(), facetsBeforeBuild.begin());
     buildShape(parts, shape);
     pullPower(id);
     // What receivers hold stays valid while the facets stand for the same
@@ -322,7 +322,10 @@ void Hierarchy::finishCluster(ElementId id, bool turned) {
         shape.gathered = shape.power;
         shape.exposureMeasured = false;
     } else
-        for (int k = 0; k < facetsBefore; ++k) shape.facets[k].exposure = exposureBefore[k];
+        for (int k = 0; k < facetsBefore; ++k) {
+            shape.facets[k].exposure = facetsBeforeBuild[k].exposure;
+            shape.facets[k].staticBlocked = facetsBeforeBuild[k].staticBlocked;
+        }
     shape.ownValid = false;  // its facets and centre moved: summed again from its links
 }
 

@@ -32,6 +32,23 @@ glm::dvec3 localDirection(int sample, int ray) {
     return {r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - u)};
 }
 
+// For a surface that is an axis-aligned rectangle (its area that of its
+// box's face), the axis of its normal; -1 otherwise.
+int planeAxis(const HElement& surface) {
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (std::abs(surface.normal[a]) > std::abs(surface.normal[axis])) axis = a;
+    if (std::abs(surface.normal[axis]) < 1.0 - 1e-12 || surface.patch.n != 4) return -1;
+    glm::dvec3 lo = surface.patch.v[0], hi = lo;
+    for (int i = 1; i < 4; ++i) {
+        lo = glm::min(lo, surface.patch.v[i]);
+        hi = glm::max(hi, surface.patch.v[i]);
+    }
+    const glm::dvec3 e = hi - lo;
+    const double face = e[(axis + 1) % 3] * e[(axis + 2) % 3];
+    return std::abs(face - surface.area) <= 1e-9 * face ? axis : -1;
+}
+
 // Where a ray from p along d leaves the box (p inside, or near it).
 double exitDistance(const Aabb& box, const glm::dvec3& p, const glm::dvec3& d) {
     double t = std::numeric_limits<double>::infinity();
@@ -75,11 +92,15 @@ ElementId memberAt(const Hierarchy& h, ElementId cluster, int k, double at) {
     }
 }
 
-void measureOne(Hierarchy& h, const RayCaster& rays, ElementId id) {
+// `staticKnown`: the cluster has not moved since it was last measured, and
+// neither has the static layer near it: its rays are those it cast then,
+// and only the dynamic layer is asked.
+void measureOne(Hierarchy& h, const RayCaster& rays, ElementId id, bool staticKnown) {
     ClusterShape& shape = h.shape(id);
+    staticKnown = staticKnown && shape.exposureMeasured;
     shape.exposureMeasured = true;
     const int facets = shape.facetCount();
-    for (ClusterShape::Facet& f : shape.facets) f.exposure = 1.0;
+    for (ClusterShape::Facet& f : shape.facets) f.exposure = 1.0f;
     if (facets < 2) return;  // one facet: nothing to divide
     const Aabb& box = h.box(id);
     const double margin = kReach * glm::length(box.extent());
@@ -111,17 +132,20 @@ void measureOne(Hierarchy& h, const RayCaster& rays, ElementId id) {
         }
         if (n == 0) continue;
         const std::span<const RayCaster::Segment> all(segments.data(), n);
-        const std::uint16_t blocked =
-            rays.blocked(Layer::Static, all) | rays.blocked(Layer::Dynamic, all);
-        shape.facets[k].exposure = double(n - std::popcount(blocked)) / double(n);
+        ClusterShape::Facet& f = shape.facets[k];
+        if (!staticKnown) f.staticBlocked = rays.blocked(Layer::Static, all);
+        const std::uint16_t blocked = f.staticBlocked | rays.blocked(Layer::Dynamic, all);
+        f.exposure = float(double(n - std::popcount(blocked)) / double(n));
     }
 }
 
 }  // namespace
 
-void measureExposure(Hierarchy& h, const RayCaster& rays, std::span<const ElementId> clusters) {
-    tbb::parallel_for(std::size_t(0), clusters.size(),
-                      [&](std::size_t i) { measureOne(h, rays, clusters[i]); });
+void measureExposure(Hierarchy& h, const RayCaster& rays, std::span<const ElementId> clusters,
+                     std::span<const std::uint8_t> staticKnown) {
+    tbb::parallel_for(std::size_t(0), clusters.size(), [&](std::size_t i) {
+        measureOne(h, rays, clusters[i], i < staticKnown.size() && staticKnown[i]);
+    });
 }
 
 void measureExposure(Hierarchy& h, const RayCaster& rays) {
@@ -147,12 +171,19 @@ std::vector<ElementId> measureExposureAround(Hierarchy& h, const RayCaster& rays
             return meet(b, m.oldBox) || meet(b, m.newBox);
         });
     };
-    std::vector<ElementId> clusters(also.begin(), also.end());
+    // (cluster, whether its static part is known: it did not move and its
+    // facets did not regroup)
+    std::vector<std::pair<ElementId, std::uint8_t>> found;
+    for (ElementId e : also) found.emplace_back(e, 0);
     // Others' clusters that meet a moved box (a cluster's box holds its
     // children's: below one that meets none, none does), and others'
     // surfaces that do: what the moved objects' own clusters may meet.
-    std::vector<Aabb> foreign;
-    for (const ExposureMotion& m : motions) foreign.insert(foreign.end(), {m.oldBox, m.newBox});
+    struct Foreign {
+        Aabb box;
+        ElementId surface = kNone;  // kNone: another moved object's box
+    };
+    std::vector<Foreign> foreign;
+    for (const ExposureMotion& m : motions) foreign.insert(foreign.end(), {{m.oldBox}, {m.newBox}});
     for (std::vector<ElementId> stack{h.root()}; !stack.empty();) {
         const ElementId e = stack.back();
         stack.pop_back();
@@ -165,7 +196,7 @@ std::vector<ElementId> measureExposureAround(Hierarchy& h, const RayCaster& rays
             if (std::any_of(motions.begin(), motions.end(), [&](const ExposureMotion& m) {
                     return meet(box, widened(m.oldBox)) || meet(box, widened(m.newBox));
                 }))
-                foreign.push_back(box);
+                foreign.push_back({box, e});
             continue;
         }
         if (!meetsMotion(widened(box))) continue;
@@ -177,7 +208,7 @@ std::vector<ElementId> measureExposureAround(Hierarchy& h, const RayCaster& rays
             std::any_of(motions.begin(), motions.end(), [&](const ExposureMotion& m) {
                 return m.cluster != kNone && h.range(e).contains(h.range(m.cluster));
             });
-        if (!holds || !h.shape(e).exposureMeasured) clusters.push_back(e);
+        if (!holds || !h.shape(e).exposureMeasured) found.emplace_back(e, 1);
         for (ElementId c : h[e].children) stack.push_back(c);
     }
     for (const ExposureMotion& m : motions) {
@@ -190,22 +221,53 @@ std::vector<ElementId> measureExposureAround(Hierarchy& h, const RayCaster& rays
             stack.pop_back();
             if (e == kNone || h[e].isSurface()) continue;
             const Aabb now = widened(h.box(e)), before{now.lo - m.shift, now.hi - m.shift};
+            // The planes the cluster slides along, covered by axis-aligned
+            // rectangles wherever it stands before and after (a floor of
+            // tiles under a chair), stand where they stood to it.
+            const Aabb both{glm::min(now.lo, before.lo), glm::max(now.hi, before.hi)};
+            const auto alongside = [&](const Foreign& f) {
+                if (f.surface == kNone) return false;
+                const int axis = planeAxis(h[f.surface]);
+                if (axis < 0 || std::abs(m.shift[axis]) > 1e-9 * glm::length(m.shift)) return false;
+                const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+                double covered = 0.0;
+                for (const Foreign& g : foreign) {
+                    if (g.surface == kNone || planeAxis(h[g.surface]) != axis ||
+                        h[g.surface].normal[axis] * h[f.surface].normal[axis] < 0.0 ||
+                        std::abs(g.box.lo[axis] - f.box.lo[axis]) >
+                            1e-9 * glm::length(both.extent()))
+                        continue;
+                    const double du =
+                        std::min(g.box.hi[u], both.hi[u]) - std::max(g.box.lo[u], both.lo[u]);
+                    const double dv =
+                        std::min(g.box.hi[v], both.hi[v]) - std::max(g.box.lo[v], both.lo[v]);
+                    if (du > 0.0 && dv > 0.0) covered += du * dv;
+                }
+                const glm::dvec3 extent = both.extent();
+                return covered >= (1.0 - 1e-9) * extent[u] * extent[v];
+            };
             bool near = m.turned;
             for (std::size_t i = 0; i < foreign.size() && !near; ++i)
-                near = !mine(i) && (meet(now, foreign[i]) || meet(before, foreign[i]));
-            if (near) clusters.push_back(e);
+                near = !mine(i) && (meet(now, foreign[i].box) || meet(before, foreign[i].box)) &&
+                       !alongside(foreign[i]);
+            if (near) found.emplace_back(e, 0);
             for (ElementId c : h[e].children) stack.push_back(c);
         }
     }
-    std::sort(clusters.begin(), clusters.end());
-    clusters.erase(std::unique(clusters.begin(), clusters.end()), clusters.end());
-    std::erase_if(clusters, [&](ElementId e) {
-        return !h.isLive(e) || h[e].isSurface() || h[e].shape == kNone;
-    });
+    // Each once, its static part unknown if any finding says so.
+    std::sort(found.begin(), found.end());
+    std::vector<ElementId> clusters;
+    std::vector<std::uint8_t> staticKnown;
+    for (const auto& [e, known] : found) {
+        if (!h.isLive(e) || h[e].isSurface() || h[e].shape == kNone) continue;
+        if (!clusters.empty() && clusters.back() == e) continue;  // the lowest flag sorts first
+        clusters.push_back(e);
+        staticKnown.push_back(known);
+    }
     std::vector<double> before;
     for (ElementId e : clusters)
         for (const ClusterShape::Facet& f : h.shape(e).facets) before.push_back(f.exposure);
-    measureExposure(h, rays, clusters);
+    measureExposure(h, rays, clusters, staticKnown);
     std::vector<ElementId> changed;
     std::size_t i = 0;
     for (ElementId e : clusters) {

@@ -12,6 +12,7 @@
 // light divides among the facets that face it by A c e rather than A c: the
 // cluster catches what it did, and the exposed facets take the slots' share.
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -21,9 +22,13 @@
 namespace rad {
 
 // Measures the exposure of the given clusters' facets (surfaces are left
-// out), against both layers of `rays` as they stand.
+// out), against both layers of `rays` as they stand; or, where
+// `staticKnown[i]` is set and cluster i was measured before, against the
+// dynamic layer only, with the static layer's part kept from then (the
+// cluster and the static layer near it have not moved since).
 void measureExposure(Hierarchy& hierarchy, const RayCaster& rays,
-                     std::span<const ElementId> clusters);
+                     std::span<const ElementId> clusters,
+                     std::span<const std::uint8_t> staticKnown = {});
 // The same for every live cluster.
 void measureExposure(Hierarchy& hierarchy, const RayCaster& rays);
 // An object that moved: its top cluster, its boxes before and after, and
