@@ -304,18 +304,19 @@ struct Engine::State {
         finding.clear();
         updater.abandonTraversal();
     }
-    // A frame in which objects' links wait for their moves (being found, or
-    // deferred): how many, and the estimate with their links in the share
-    // of its size each object has moved since they were last updated.
     // The clusters whose exposure what moved may change are measured again;
     // where it changed, their light divides anew: their arrivals are summed
     // again and pushed.
-    void measureExposureAround(std::span<const ExposureMotion> motions, std::span<const ElementId> also = {}) {
-        for (ElementId e : rad::measureExposureAround(hierarchy, rays, motions, also)) {
+    void measureExposureAround(std::span<const ExposureMotion> motions, std::span<const ElementId> also = {},
+                               bool layersChanged = false) {
+        for (ElementId e : rad::measureExposureAround(hierarchy, rays, motions, also, layersChanged)) {
             hierarchy.shape(e).ownValid = false;
             refiner.markDirty(e);
         }
     }
+    // A frame in which objects' links wait for their moves (being found, or
+    // deferred): how many, and the estimate with their links in the share
+    // of its size each object has moved since they were last updated.
     void countWaitingMoves(FrameStats& f) {
         std::map<std::uint32_t, Aabb> since;
         for (const auto& [object, d] : finding) since.emplace(object, d.box);
@@ -784,7 +785,7 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
     if (!s.solved) return {};  // the solve measures every cluster's exposure
     const Aabb objectBox = s.scene.objectBounds(*object);
     const ExposureMotion stays{cluster, objectBox, objectBox};
-    s.measureExposureAround(std::span(&stays, 1), left);
+    s.measureExposureAround(std::span(&stays, 1), left, true);  // it left the static layer
     const double reinsertSeconds = secondsSince(start);
     // The links around it: their rays that it blocks move from the static
     // part of the visibility to the dynamic one.

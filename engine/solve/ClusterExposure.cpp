@@ -157,7 +157,7 @@ void measureExposure(Hierarchy& h, const RayCaster& rays) {
 
 std::vector<ElementId> measureExposureAround(Hierarchy& h, const RayCaster& rays,
                                              std::span<const ExposureMotion> motions,
-                                             std::span<const ElementId> also) {
+                                             std::span<const ElementId> also, bool layersChanged) {
     const auto widened = [&](const Aabb& b) {
         const glm::dvec3 reach(kReach * glm::length(b.extent()));
         return Aabb{b.lo - reach, b.hi + reach};
@@ -208,7 +208,7 @@ std::vector<ElementId> measureExposureAround(Hierarchy& h, const RayCaster& rays
             std::any_of(motions.begin(), motions.end(), [&](const ExposureMotion& m) {
                 return m.cluster != kNone && h.range(e).contains(h.range(m.cluster));
             });
-        if (!holds || !h.shape(e).exposureMeasured) found.emplace_back(e, 1);
+        if (!holds || !h.shape(e).exposureMeasured) found.emplace_back(e, layersChanged ? 0 : 1);
         for (ElementId c : h[e].children) stack.push_back(c);
     }
     for (const ExposureMotion& m : motions) {

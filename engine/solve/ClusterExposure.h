@@ -48,11 +48,14 @@ struct ExposureMotion {
 //   - a moved object's own clusters if it turned, or if their box, before
 //     or after, meets a surface of another object: a translated cluster's
 //     own surfaces block its rays alike wherever it stands.
+// `layersChanged`: an object joined the dynamic layer; the clusters are
+// cast in full (the static part they kept had it).
 // Returns those whose exposure changed by more than kExposureTolerance:
 // their light divides anew, and they are to be pushed again.
 std::vector<ElementId> measureExposureAround(Hierarchy& hierarchy, const RayCaster& rays,
                                              std::span<const ExposureMotion> motions,
-                                             std::span<const ElementId> also = {});
+                                             std::span<const ElementId> also = {},
+                                             bool layersChanged = false);
 inline constexpr double kExposureTolerance = 0.02;
 
 }  // namespace rad
