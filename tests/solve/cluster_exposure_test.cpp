@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <numeric>
 #include <vector>
 
@@ -110,6 +111,57 @@ TEST(ClusterExposure, ABookRowsSlotSidesAreHiddenAndItsSpinesOpen) {
     EXPECT_GT(spine, 0.9);
     EXPECT_LT(side, 0.3);
     EXPECT_LT(back, 0.1);
+}
+
+// A move measures again what a measure of everything would change: the
+// block slides along the floor toward a crate, and after each step every
+// cluster's exposure is as a new measure of all of them finds it, but for
+// those that hold the block, which keep theirs (ClusterExposure.h).
+TEST(ClusterExposure, AMoveMeasuresAgainWhatAMeasureOfEverythingFinds) {
+    Scene s = test::roomWithBlock();
+    test::addQuadObject(s, "crate", test::addMaterial(s, V(0.5), V(0.0), "crate"),
+                        test::boxFaces(V(2.5, 0.0, 1.4), V(3.2, 0.7, 2.3), false));
+    Hierarchy h(s, 1e-4);
+    RayCaster rays;
+    rays.setFrame(s.bounds());
+    const std::uint32_t block = *s.findObject("block");
+    std::vector<std::uint32_t> fixed, moving;
+    for (std::uint32_t p = 0; p < s.polygons.size(); ++p)
+        (s.polygons[p].object == block ? moving : fixed).push_back(p);
+    rays.setLayer(Layer::Static, s, fixed);
+    const std::size_t instance = rays.addInstance(s, moving);
+    rays.commitInstances();
+    measureExposure(h, rays);
+    const std::vector<Polygon> start(s.polygons.begin(), s.polygons.end());
+    const ElementId cluster = h.objectCluster(block);
+    std::size_t changedInAll = 0;
+    for (int step = 1; step <= 3; ++step) {
+        const V shift(0.09, 0.0, 0.0);
+        const Aabb before = s.objectBounds(block);
+        for (std::uint32_t p : moving)
+            for (int k = 0; k < s.polygons[p].vertexCount; ++k)
+                s.polygons[p].vertices[k] = start[p].vertices[k] + double(step) * shift;
+        h.updateGeometry(cluster, false);
+        h.refreshAncestors(cluster);
+        rays.moveInstance(instance, glm::translate(glm::dmat4(1.0), double(step) * shift));
+        rays.commitInstances();
+        const ExposureMotion motion{cluster, before, s.objectBounds(block), shift, false};
+        changedInAll += measureExposureAround(h, rays, std::span(&motion, 1)).size();
+        std::vector<std::vector<float>> kept(h.size());
+        for (ElementId e = 0; e < h.size(); ++e)
+            if (h.isLive(e) && !h[e].isSurface())
+                for (const ClusterShape::Facet& f : h.shape(e).facets)
+                    kept[e].push_back(f.exposure);
+        measureExposure(h, rays);
+        for (ElementId e = 0; e < h.size(); ++e) {
+            const bool holdsBlock = e != cluster && h.range(e).contains(h.range(cluster));
+            if (!h.isLive(e) || h[e].isSurface() || holdsBlock) continue;
+            for (int k = 0; k < h.shape(e).facetCount(); ++k)
+                EXPECT_EQ(kept[e][k], h.shape(e).facets[k].exposure)
+                    << "step " << step << ", cluster " << e;
+        }
+    }
+    EXPECT_GT(changedInAll, 0u);  // the crate's side toward the block is hidden more and more
 }
 
 // End to end at the default settings: the room's light reaches the books
