@@ -7,9 +7,10 @@
 // them, which almost no light from outside reaches, and its spines little:
 // by orientation alone the slots' sides took the light the spines catch
 // (`office`'s bookcases read 0.5 to 0.9 of Cycles). So each facet gets an
-// exposure, the share of rays that leave its sample points
-// (cosine-distributed) and reach the cluster's box unblocked, and a link's
-// light divides among the facets that face it by A c e rather than A c: the
+// exposure, the share of 16 rays (cosine-distributed, from 4 points spread
+// over its members by area) that reach the cluster's box, or 5% of its size
+// beyond it, unblocked, and a link's light divides among the facets that
+// face it by A c e rather than A c (ClusterShape::arrivalWeights): the
 // cluster catches what it did, and the exposed facets take the slots' share.
 
 #include <cstdint>
@@ -47,7 +48,9 @@ struct ExposureMotion {
 //     if their facets regrouped (ClusterShape::exposureMeasured);
 //   - a moved object's own clusters if it turned, or if their box, before
 //     or after, meets a surface of another object: a translated cluster's
-//     own surfaces block its rays alike wherever it stands.
+//     own surfaces block its rays alike wherever it stands, and so does a
+//     plane it slides along that axis-aligned rectangles cover before and
+//     after (a floor of tiles).
 // `layersChanged`: an object joined the dynamic layer; the clusters are
 // cast in full (the static part they kept had it).
 // Returns those whose exposure changed by more than kExposureTolerance:
