@@ -86,6 +86,14 @@ double emittedPowerAfter(const Scene& scene, const std::vector<Engine::MaterialE
 
 double emittedPower(const Scene& scene) { return emittedPowerAfter(scene, {}); }
 
+// Whether `to` turns (rotates, mirrors or scales) an object from `from`, or
+// only translates it.
+bool turnedBetween(const glm::dmat4& from, const glm::dmat4& to) {
+    const glm::dmat3 turn = glm::dmat3(to) - glm::dmat3(from);
+    return std::max({glm::length(turn[0]), glm::length(turn[1]), glm::length(turn[2])}) >
+           1e-12 * std::max(1.0, glm::length(glm::dmat3(to)[0]));
+}
+
 // The share of the thresholds' references (emitted power, area) a point's
 // surroundings make up (refine/Surroundings.h), measured with the scene's
 // own rays before the hierarchy is built: the scene's, and in an open scene
@@ -936,9 +944,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         }
         // Turned (rotated, mirrored or scaled), or only translated since its
         // clusters' shapes were built (kept then: Hierarchy::updateGeometry).
-        const glm::dmat3 turn = glm::dmat3(worldFromLocal) - glm::dmat3(o.worldFromLocal);
-        const bool turned = std::max({glm::length(turn[0]), glm::length(turn[1]), glm::length(turn[2])}) >
-                            1e-12 * std::max(1.0, glm::length(glm::dmat3(worldFromLocal)[0]));
+        const bool turned = turnedBetween(o.worldFromLocal, worldFromLocal);
         o.worldFromLocal = worldFromLocal;
         s.rays.moveInstance(c.instance, delta);
         const ElementId cluster = s.hierarchy.objectCluster(object);
@@ -1034,11 +1040,8 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         const glm::dmat4 oldToNew = world * glm::inverse(d.world);
         for (const Aabb& box : motionObstacles(s.scene, object, d.box, oldToNew)) obstacles.push_back(box);
         motions.push_back({d.box, s.scene.objectBounds(object), s.hierarchy.range(s.hierarchy.objectCluster(object))});
-        const glm::dmat3 turn = glm::dmat3(world) - glm::dmat3(d.world);
-        const bool turned = std::max({glm::length(turn[0]), glm::length(turn[1]), glm::length(turn[2])}) >
-                            1e-12 * std::max(1.0, glm::length(glm::dmat3(world)[0]));
         exposureMotions.push_back({s.hierarchy.objectCluster(object), d.box, s.scene.objectBounds(object),
-                                   glm::dvec3(world[3]) - glm::dvec3(d.world[3]), turned});
+                                   glm::dvec3(world[3]) - glm::dvec3(d.world[3]), turnedBetween(d.world, world)});
     }
     const auto exposureStart = std::chrono::steady_clock::now();
     s.measureExposureAround(exposureMotions);

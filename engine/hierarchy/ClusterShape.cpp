@@ -33,21 +33,18 @@ double ClusterShape::projectedArea(const glm::dvec3& dir) const {
     return a;
 }
 
-void ClusterShape::arrivalWeights(const glm::dvec3& u, std::array<double, kMaxFacets>& w) const {
+void ClusterShape::arrivalWeights(const glm::dvec3& u, std::array<double, kMaxFacets>& w,
+                                  std::array<double, kMaxFacets>& c) const {
     double projected = 0.0, exposed = 0.0;
     for (int k = 0; k < facetCount(); ++k) {
-        const double c = std::max(0.0, glm::dot(facets[k].normal, u));
-        w[k] = c * facets[k].exposure;
-        projected += facets[k].area * c;
+        c[k] = std::max(0.0, glm::dot(facets[k].normal, u));
+        w[k] = c[k] * facets[k].exposure;
+        projected += facets[k].area * c[k];
         exposed += facets[k].area * w[k];
     }
     // Nothing exposed that faces u (or every exposure 0): by orientation alone.
-    if (!(exposed > 1e-6 * projected)) {
-        for (int k = 0; k < facetCount(); ++k) w[k] = std::max(0.0, glm::dot(facets[k].normal, u));
-        return;
-    }
-    const double s = projected / exposed;
-    for (int k = 0; k < facetCount(); ++k) w[k] *= s;
+    const double s = exposed > 1e-6 * projected ? projected / exposed : 0.0;
+    for (int k = 0; k < facetCount(); ++k) w[k] = s > 0.0 ? s * w[k] : c[k];
 }
 
 glm::dvec3 ClusterShape::radiosityToward(std::span<const Facet> facets, const glm::dvec3& dir,

@@ -119,8 +119,9 @@ struct ClusterShape {
     // divides among the facets: facet k takes w_k per unit of its area,
     // c_k e_k s with c_k = max(0, n_k . u), e_k its exposure and s such that
     // sum_k A_k w_k = sum_k A_k c_k (the cluster catches what its projected
-    // area does). Facets that face away take 0.
-    void arrivalWeights(const glm::dvec3& u, std::array<double, kMaxFacets>& w) const;
+    // area does). Facets that face away take 0. `c` gets the c_k.
+    void arrivalWeights(const glm::dvec3& u, std::array<double, kMaxFacets>& w,
+                        std::array<double, kMaxFacets>& c) const;
     // The radiosity the cluster sends toward dir (unit): the facets' powers
     // weighted by their projected areas, over the projected area; zero when
     // no facet faces dir.

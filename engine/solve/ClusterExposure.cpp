@@ -211,11 +211,10 @@ std::vector<ElementId> measureExposureAround(Hierarchy& h, const RayCaster& rays
         if (!holds || !h.shape(e).exposureMeasured) found.emplace_back(e, layersChanged ? 0 : 1);
         for (ElementId c : h[e].children) stack.push_back(c);
     }
-    for (const ExposureMotion& m : motions) {
-        const auto mine = [&](std::size_t i) {
-            return i >= 2 * std::size_t(&m - motions.data()) &&
-                   i < 2 * std::size_t(&m - motions.data()) + 2;
-        };
+    for (std::size_t index = 0; index < motions.size(); ++index) {
+        const ExposureMotion& m = motions[index];
+        // Its own boxes, first in `foreign`, are not in its way.
+        const auto mine = [&](std::size_t i) { return i / 2 == index && i < 2 * motions.size(); };
         for (std::vector<ElementId> stack{m.cluster}; !stack.empty();) {
             const ElementId e = stack.back();
             stack.pop_back();

@@ -170,13 +170,12 @@ void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
         // The light by exposure (ClusterShape::arrivalWeights); the view the
         // link covers, which the energy guard and the fill read, by
         // orientation: a hidden facet's view is covered, and lit by nothing.
-        std::array<double, ClusterShape::kMaxFacets> w;
-        shape.arrivalWeights(u, w);
+        std::array<double, ClusterShape::kMaxFacets> w, c;
+        shape.arrivalWeights(u, w, c);
         for (int k = 0; k < shape.facetCount(); ++k) {
-            const double c = glm::dot(shape.facets[k].normal, u);
-            if (c <= 0.0) continue;  // one-sided: facing away, it gets none
+            if (c[k] <= 0.0) continue;  // one-sided: facing away, it gets none
             arrivals.irradiance[k] += w[k] * l.gathered * sent;
-            arrivals.formFactorSum[k] += c * l.gathered;
+            arrivals.formFactorSum[k] += c[k] * l.gathered;
         }
     }
 }
@@ -184,8 +183,8 @@ void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
 void addTransfer(Hierarchy& h, ElementId cluster, ElementId source, const glm::dvec3& irradiance) {
     ClusterShape& shape = h.shape(cluster);
     if (!shape.ownValid) return;
-    std::array<double, ClusterShape::kMaxFacets> w;
-    shape.arrivalWeights(centreDirection(h, cluster, source), w);
+    std::array<double, ClusterShape::kMaxFacets> w, c;
+    shape.arrivalWeights(centreDirection(h, cluster, source), w, c);
     for (int k = 0; k < shape.facetCount(); ++k)
         if (w[k] > 0.0) shape.ownIrradiance[k] += w[k] * irradiance;
 }

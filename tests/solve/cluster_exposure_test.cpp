@@ -74,8 +74,8 @@ TEST(ClusterExposure, ArrivalWeightsMoveLightToExposedFacetsAndKeepItsSum) {
     ClusterShape shape;
     shape.facets = {{V(0, 0, 1), 1.0, 1.0}, {V(1, 0, 0), 4.0, 0.1}, {V(0, 0, -1), 1.0, 1.0}};
     const V u = glm::normalize(V(1, 0, 1));
-    std::array<double, ClusterShape::kMaxFacets> w{};
-    shape.arrivalWeights(u, w);
+    std::array<double, ClusterShape::kMaxFacets> w{}, c{};
+    shape.arrivalWeights(u, w, c);
     EXPECT_EQ(w[2], 0.0);  // facing away
     // What the cluster catches is its projected area's: sum A w = sum A c.
     EXPECT_NEAR(1.0 * w[0] + 4.0 * w[1], shape.projectedArea(u), 1e-12);
@@ -83,7 +83,7 @@ TEST(ClusterExposure, ArrivalWeightsMoveLightToExposedFacetsAndKeepItsSum) {
     EXPECT_NEAR(w[1] / w[0], 0.1, 1e-7);  // exposure is a float
     // Nothing that faces u exposed: by orientation alone.
     shape.facets[0].exposure = shape.facets[1].exposure = 0.0;
-    shape.arrivalWeights(u, w);
+    shape.arrivalWeights(u, w, c);
     EXPECT_NEAR(w[0], glm::dot(shape.facets[0].normal, u), 1e-12);
     EXPECT_NEAR(w[1], glm::dot(shape.facets[1].normal, u), 1e-12);
 }
