@@ -87,6 +87,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
     };
     if (r.error) {
         frame["full_solve_seconds"] = *r.fullSolveSeconds;
+        frame["full_solve_converged"] = r.fullSolveConverged;
         frame["error_vs_full"] = errorReport(*r.error, scene);
     }
     return frame;

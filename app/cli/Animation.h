@@ -2,6 +2,7 @@
 // Running a scripted motion through the engine: what `animate` and `sweep`
 // share. The total motion is applied in N equal steps.
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -50,6 +51,7 @@ struct FrameRecord {
     FrameStats stats;
     std::optional<double> targetSeconds;
     std::optional<double> fullSolveSeconds;
+    bool fullSolveConverged = true;  // false: `error` is against a solve that did not converge
     std::optional<SolutionError> error;  // against a from-scratch solve of the frame
     // Against the converged reference of the frame (References::convergedEpsilon).
     std::optional<SolutionError> errorVsConverged;
@@ -70,6 +72,7 @@ struct AnimationRun {
 struct References {
     std::vector<RadiositySamples> samples;
     std::vector<double> seconds;
+    std::vector<std::uint8_t> fullConverged;  // whether each frame's full solve converged
     // With an epsilon: each frame solved again from scratch at that finer
     // epsilon, the converged answer the user should see.
     std::optional<double> convergedEpsilon;

@@ -54,6 +54,9 @@ TEST(CliAnimate, ReportsEveryFrameAndMatchesAFullSolve) {
         if (jsonAt(frame, "/changed_elements") > 0) {
             EXPECT_GT(jsonAt(frame, "/changed_leaves"), 0) << "frame " << f;
         }
+        // The error is against a full solve that converged (the CLI warns when one does not).
+        EXPECT_EQ(jsonAt(frame, "/full_solve_converged"), true) << "frame " << f;
+        EXPECT_EQ(r.output.find("did not converge"), std::string::npos) << r.output;
         // Neither a budget nor a target frame rate was asked for.
         EXPECT_TRUE(jsonAt(frame, "/budget").is_null()) << "frame " << f;
         EXPECT_TRUE(jsonAt(frame, "/target_seconds").is_null()) << "frame " << f;
