@@ -177,8 +177,7 @@ def set_lights(scene, gl):
     radiant intensity I in the scene's units, a point source (radius 0). A Cycles point or spot
     light of power P sends P / (4 pi) per steradian and a diffuse surface shows radiance rho E
     / pi, while here a pixel reads B = rho E (see the README: radiances are pi times physical
-    ones), so P = 4 pi^2 I. A spot's cone is outerConeAngle wide; Blender's blend between the
-    cone's edge and its inside is not glTF's falloff, so a spot's rim differs. Directional
+    ones), so P = 4 pi^2 I. A spot follows glTF's cone falloff (gltf_spot_falloff). Directional
     lights, which the engine ignores, are removed."""
     lights = gl.get('extensions', {}).get('KHR_lights_punctual', {}).get('lights', [])
     by_node = {}
@@ -200,10 +199,36 @@ def set_lights(scene, gl):
         obj.data.shadow_soft_size = 0.0
         if light.get('type') == 'spot':
             spot = light.get('spot', {})
-            outer = spot.get('outerConeAngle', math.pi / 4.0)
-            inner = spot.get('innerConeAngle', 0.0)
-            obj.data.spot_size = 2.0 * outer
-            obj.data.spot_blend = 1.0 - inner / outer if outer > 0.0 else 0.0
+            gltf_spot_falloff(obj.data, spot.get('innerConeAngle', 0.0), spot.get('outerConeAngle', math.pi / 4.0))
+
+
+def gltf_spot_falloff(data, inner, outer):
+    """A spot as glTF defines it: a point light whose intensity is scaled by s^2, s = clamp((cos a
+    - cos outer) / (cos inner - cos outer), 0, 1), a the angle from the light's -Z axis. Blender's
+    own spot (a smoothstep blend, times cos a in Cycles 3.x) sends up to 1.5 times the power of
+    glTF's cone. Here the light is a Cycles point light whose emission strength is that factor,
+    computed by shader nodes from the direction of emission (the light's Normal, in its own space)."""
+    data.type = 'POINT'
+    data.shadow_soft_size = 0.0
+    data.use_nodes = True
+    nodes, links = data.node_tree.nodes, data.node_tree.links
+    emission = next(n for n in nodes if n.type == 'EMISSION')
+    coords = nodes.new('ShaderNodeTexCoord')
+    split = nodes.new('ShaderNodeSeparateXYZ')
+    links.new(coords.outputs['Normal'], split.inputs['Vector'])
+    # (cos a - cos outer) / (cos inner - cos outer) with cos a = -z: one multiply-add.
+    span = max(math.cos(inner) - math.cos(outer), 1e-4)
+    s = nodes.new('ShaderNodeMath')
+    s.operation = 'MULTIPLY_ADD'
+    s.use_clamp = True
+    links.new(split.outputs['Z'], s.inputs[0])
+    s.inputs[1].default_value = -1.0 / span
+    s.inputs[2].default_value = -math.cos(outer) / span
+    square = nodes.new('ShaderNodeMath')
+    square.operation = 'MULTIPLY'
+    links.new(s.outputs[0], square.inputs[0])
+    links.new(s.outputs[0], square.inputs[1])
+    links.new(square.outputs[0], emission.inputs['Strength'])
 
 
 def set_camera(scene, gl, width, height):

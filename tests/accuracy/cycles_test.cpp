@@ -49,6 +49,11 @@ const ReferenceCase kBlenderRoomCase{"blender-room", 128, 72, 0.05,
 // wall elements straddling the partition shone into the dark room). No light
 // is in its camera's view.
 const ReferenceCase kSlabRoomsCase{"slab-rooms", 120, 80, 0.08, "bench/untuned/slab-rooms.gltf"};
+// Lit by punctual lights only: a point bulb and a spot (glTF's cone falloff,
+// which the reference script reproduces with shader nodes). No issue sets its
+// target; it is held to the Cornell box's 5% (measured 3.1%; a reference made
+// with Blender's own spot blend read 14%). No light surface is in its view.
+const ReferenceCase kLampRoomCase{"lamp-room", 128, 96, 0.05};
 // Measured in the README (4.5% at the default settings; 6.6% before the
 // clusters' exposure, 12.2% before the fill), not asserted: no
 // issue sets its target, and its solve under the sanitizers would cost CI
@@ -154,6 +159,7 @@ TEST(CyclesReference, MatchesTheSceneFiles) {
     expectReferenceMatchesScene(kFurnishedRoomCase);
     expectReferenceMatchesScene(kBlenderRoomCase);
     expectReferenceMatchesScene(kSlabRoomsCase);
+    expectReferenceMatchesScene(kLampRoomCase);
     expectReferenceMatchesScene(kOfficeCase);
 }
 
@@ -166,6 +172,7 @@ TEST(CyclesAccuracy, ARoomWrittenByBlenderWithinFivePercent) {
     expectWithinTarget(kBlenderRoomCase);
 }
 TEST(CyclesAccuracy, RoomsOfSlabsWithinEightPercent) { expectWithinTarget(kSlabRoomsCase); }
+TEST(CyclesAccuracy, PointAndSpotLightsWithinFivePercent) { expectWithinTarget(kLampRoomCase); }
 
 }  // namespace
 }  // namespace rad
