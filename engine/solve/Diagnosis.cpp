@@ -137,6 +137,16 @@ std::vector<Warning> backFaceWarnings(const Scene& scene, const EnergyBalance& e
     return {{"back_faces", m.str(), objects, share}};
 }
 
+std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double threshold) {
+    if (!(energy.emitted > 0.0) || !(energy.lost > threshold * energy.emitted)) return {};
+    const double share = energy.lost / energy.emitted;
+    std::ostringstream m;
+    m << std::lround(100.0 * share)
+      << "% of the emitted light is lost, neither absorbed, escaped nor taken by back faces: is a light "
+         "source hidden under another surface, or are the links too coarse (a smaller --epsilon)?";
+    return {{"lost_light", m.str(), {}, share}};
+}
+
 std::size_t clearNonFinite(Hierarchy& h) {
     std::size_t cleared = 0;
     const auto clear = [&](glm::dvec3& v) {

@@ -27,6 +27,12 @@ std::vector<Warning> guardWarnings(const Scene& scene, const Solver& solver, dou
 // converges. None otherwise.
 std::vector<Warning> backFaceWarnings(const Scene& scene, const EnergyBalance& energy, double threshold);
 
+// A warning when more than `threshold` of the emitted light is lost
+// (EnergyBalance::lost: neither absorbed, escaped nor taken by back faces):
+// a light source hidden under another surface, or links that miss much of
+// what a point sees. The solve converges all the same. None otherwise.
+std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double threshold);
+
 // Sets every non-finite radiosity and irradiance to zero, so that no NaN
 // reaches a report, an image or an export. Returns how many were.
 std::size_t clearNonFinite(Hierarchy& hierarchy);
