@@ -79,6 +79,12 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, const glm
     MeshSnapshot& mesh = part.mesh;
     std::vector<double>& weights = part.weights;
     std::vector<std::uint32_t>& outline = part.outline;
+    {
+        const Material& m = scene.materials[scene.polygons[h[top].polygon].material];
+        const bool emits = luminance(m.emission) > 0.0;
+        for (int c = 0; c < 3; ++c)
+            part.perLight[c] = emits || !(m.reflectance[c] > 0.0) ? 0.0f : static_cast<float>(1.0 / m.reflectance[c]);
+    }
     std::vector<ElementId>& leaves = scratch.leaves;
     leaves.clear();
     collectLeaves(h, top, leaves);
@@ -244,12 +250,11 @@ Key vertexKey(const MeshSnapshot& mesh, std::uint32_t i, const glm::dvec3& origi
 // texel (colour times texelScale: the irradiance, up to the material's
 // factor), and each vertex takes it back times its own reflectance: tiles
 // of a checkered floor that meet at a seam share their light, not their
-// colour.
-template <class Own, class Weight>
+// colour. Untextured, the same with the polygon's own reflectance
+// (SnapshotCache::Part::perLight).
+template <class Own, class Weight, class Scale>
 void smoothGroup(const std::vector<std::pair<Key, std::uint32_t>>& keyed, std::size_t a, std::size_t b,
-                 MeshSnapshot& mesh, const Own& own, const Weight& weight) {
-    const bool textured = !mesh.texelScale.empty();
-    const auto scale = [&](std::uint32_t i) { return textured ? glm::dvec3(mesh.texelScale[i]) : glm::dvec3(1.0); };
+                 MeshSnapshot& mesh, const Own& own, const Weight& weight, const Scale& scale) {
     // Per channel; a vertex that reflects nothing in a channel (texelScale
     // 0) says nothing about the light there.
     glm::dvec3 sum(0.0), w(0.0);
@@ -273,6 +278,12 @@ void smoothGroup(const std::vector<std::pair<Key, std::uint32_t>>& keyed, std::s
     }
 }
 
+// What vertex i's value is multiplied by to be smoothed (smoothGroup).
+glm::dvec3 scaleOf(const MeshSnapshot& mesh, const SnapshotCache& cache, std::uint32_t i) {
+    return glm::dvec3(mesh.texelScale.empty() ? cache.parts[cache.partOfVertex[i]].perLight : mesh.texelScale[i]);
+}
+
+// Needs cache.partOfVertex for the mesh (numberVertices).
 void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vector<double>& weights,
                           const std::vector<std::uint32_t>& outline, SnapshotCache& cache) {
     const Aabb box = scene.bounds();
@@ -291,7 +302,7 @@ void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vec
         }
         if (b - a > 1)
             smoothGroup(keyed, a, b, mesh, [&](std::uint32_t i) { return mesh.colors[i]; },
-                        [&](std::uint32_t i) { return weights[i]; });
+                        [&](std::uint32_t i) { return weights[i]; }, [&](std::uint32_t i) { return scaleOf(mesh, cache, i); });
     }
 }
 
@@ -567,7 +578,7 @@ bool patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
         while (g < gone.size() && gone[g] < key) ++g;
         bool any = g < gone.size() && gone[g] == key;
         for (b = a; b < keyed.size() && keyed[b].first == key; ++b) any = any || mine[keyed[b].second];
-        if (any) smoothGroup(keyed, a, b, mesh, own, weight);
+        if (any) smoothGroup(keyed, a, b, mesh, own, weight, [&](std::uint32_t v) { return scaleOf(mesh, cache, v); });
     }
     walked = std::chrono::duration<double>(std::chrono::steady_clock::now() - walkStart).count();
     return resized;
@@ -744,13 +755,13 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
             for (std::size_t i = 0; i < part.outline.size(); ++i) outline[outlineAt[p] + i] = part.outline[i] + offset;
         }
     });
-    smoothAcrossPolygons(scene, mesh, weights, outline, cache);
     cache.assembled = true;
     cache.vertices = mesh.positions.size();
     cache.indices = mesh.indices.size();
     cache.vertexAt = std::move(vertexAt);
     cache.indexAt = std::move(indexAt);
     numberVertices(cache);
+    smoothAcrossPolygons(scene, mesh, weights, outline, cache);
     cache.assembleSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - assembleStart).count();
     return left.load();
 }

@@ -44,6 +44,12 @@ struct SnapshotCache {
         // The vertices on the polygon's outline: only they can meet another
         // polygon's, so only they take part in smoothing across polygons.
         std::vector<std::uint32_t> outline;
+        // Untextured, what its values are multiplied by to be smoothed with
+        // another polygon's: 1 / reflectance, so that what is shared is the
+        // light arriving, not the colour (a red poster on a white wall, the
+        // tiles of a chequered floor); 0 for an emitter and a channel it
+        // does not reflect, which keep their own.
+        glm::vec3 perLight{1.0f};
         std::size_t leaves = 0;  // when it was meshed: another count changes its size
     };
     std::vector<Part> parts;  // per input polygon

@@ -15,6 +15,39 @@
 namespace rad {
 namespace {
 
+// Two quads in one plane, white and grey, meeting along x = 1 under a bulb:
+// at the seam the display shares their light, each vertex showing it times
+// its own reflectance, not their mean colour (the grey bled into the white).
+TEST(RadiositySnapshot, PolygonsMeetingAtASeamShareTheirLightNotTheirColour) {
+    using V = glm::dvec3;
+    Scene s;
+    const auto white = test::addMaterial(s, V(0.8), V(0.0), "white");
+    const auto grey = test::addMaterial(s, V(0.2), V(0.0), "grey");
+    test::addQuadObject(s, "a", white, {{V(0, 0, 0), V(1, 0, 0), V(1, 3, 0), V(0, 3, 0)}});
+    test::addQuadObject(s, "b", grey, {{V(1, 0, 0), V(2, 0, 0), V(2, 3, 0), V(1, 3, 0)}});
+    PunctualLight bulb;
+    bulb.name = "bulb";
+    bulb.position = V(1.0, 1.5, 1.0);
+    bulb.intensity = V(10.0);
+    s.lights.push_back(bulb);
+    Engine engine(s, EngineSettings{});
+    ASSERT_TRUE(engine.solve().converged);
+    const MeshSnapshot mesh = engine.snapshot();
+    int seams = 0;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+        for (std::size_t j = i + 1; j < mesh.positions.size(); ++j) {
+            if (mesh.positions[i] != mesh.positions[j] || mesh.positions[i].x != 1.0f - float(mesh.origin.x))
+                continue;
+            // Which is which: the white one is the brighter.
+            const double bright = std::max(mesh.colors[i].x, mesh.colors[j].x);
+            const double dim = std::min(mesh.colors[i].x, mesh.colors[j].x);
+            EXPECT_GT(dim, 0.0);
+            EXPECT_NEAR(bright / 0.8, dim / 0.2, 1e-5 * bright) << "seam vertex at y = " << mesh.positions[i].y;
+            ++seams;
+        }
+    EXPECT_GE(seams, 2);
+}
+
 // One unit quad: split once, then split the first child again. The fine
 // leaves put a vertex in the middle of the coarse neighbours' edges (a
 // T-vertex); its value must be the interpolation along the coarse edge.
