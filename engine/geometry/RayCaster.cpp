@@ -84,6 +84,7 @@ struct SegmentContext {
     RTCIntersectContext base;
     const std::vector<RayCasterPart>* parts;
     const PlacedSegment* segments;
+    const std::vector<std::uint32_t>* frontRank;  // per polygon (RayCaster::Impl::frontRank)
 };
 
 // The part a hit is on: an instance's (the dynamic layer), or the layer's
@@ -94,11 +95,12 @@ const RayCasterPart& partOf(const std::vector<RayCasterPart>& parts, unsigned in
 
 // Whether polygon `other`, coincident with the end polygon `end` near the end
 // point p and met by the segment from the side its front faces (`facing`),
-// stands in front of it: the lower index wins, so of coincident surfaces
-// exactly one is seen.
+// stands in front of it: the lower rank wins (the smaller polygon, see
+// RayCaster::blocked), so of coincident surfaces exactly one is seen.
 bool coincidentInFront(const glm::dvec4& plane, const glm::dvec3& p, double tolerance, bool facing,
-                       std::uint32_t other, std::uint32_t end) {
-    if (end == RayCaster::kNoPolygon || !facing || other > end) return false;
+                       std::uint32_t other, std::uint32_t end, const std::vector<std::uint32_t>& rank) {
+    if (end == RayCaster::kNoPolygon || !facing) return false;
+    if (other < rank.size() && end < rank.size() ? rank[other] > rank[end] : other > end) return false;
     const glm::dvec3 n(plane);
     return std::abs(glm::dot(n, p) - plane.w) <= tolerance * glm::length(n);
 }
@@ -143,9 +145,9 @@ void filterHits(const RTCFilterFunctionNArguments* args) {
             if (t > s.tMin && t < s.tMax)
                 blocks = true;
             else if (t >= s.tMax)  // at the receiving end: it faces the segment's start
-                blocks = coincidentInFront(plane, s.a + s.d, s.tolerance, nd < 0.0, polygon, s.toPolygon);
+                blocks = coincidentInFront(plane, s.a + s.d, s.tolerance, nd < 0.0, polygon, s.toPolygon, *ctx->frontRank);
             else if (t <= s.tMin)  // at the sending end: it faces the way the segment leaves
-                blocks = coincidentInFront(plane, s.a, s.tolerance, nd > 0.0, polygon, s.fromPolygon);
+                blocks = coincidentInFront(plane, s.a, s.tolerance, nd > 0.0, polygon, s.fromPolygon, *ctx->frontRank);
         }
         if (!blocks) args->valid[i] = 0;
     }
@@ -173,6 +175,19 @@ struct RayCaster::Impl {
     glm::dvec3 origin{0.0};
     double scale = 1.0;
     double size = 1.0;  // the frame's largest extent
+    // Per scene polygon, its place when ordered by area, smallest first
+    // (ties: by index): of coincident surfaces the smaller is seen, as the
+    // import cuts a larger one under a smaller one (scene/Covered.h).
+    std::vector<std::uint32_t> frontRank;
+
+    void rankPolygons(const Scene& scene) {
+        std::vector<std::pair<double, std::uint32_t>> byArea;
+        byArea.reserve(scene.polygons.size());
+        for (std::uint32_t i = 0; i < scene.polygons.size(); ++i) byArea.emplace_back(scene.polygons[i].area(), i);
+        std::sort(byArea.begin(), byArea.end());
+        frontRank.resize(byArea.size());
+        for (std::uint32_t k = 0; k < byArea.size(); ++k) frontRank[byArea[k].second] = k;
+    }
     // Per scene polygon given to a layer: the diagonal of its box, the scale
     // of coincidence at a segment's end on it (0: not given).
     std::vector<double> extent;
@@ -357,6 +372,7 @@ struct RayCaster::Impl {
         context.base.flags = l.instanced ? RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT : RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         context.parts = &l.parts;
         context.segments = segments.data();
+        context.frontRank = &frontRank;
         rtcOccluded16(valid.data(), l.scene.get(), &context.base, &rays);
         std::uint16_t mask = 0;
         // Embree marks an occluded ray by setting tfar to -inf.
@@ -383,6 +399,7 @@ void RayCaster::setFrame(const Aabb& bounds, const glm::dvec3& detailCentre, con
 }
 
 void RayCaster::setLayer(Layer layer, const Scene& scene, std::span<const std::uint32_t> polygonIds) {
+    if (layer == Layer::Static || impl_->frontRank.size() != scene.polygons.size()) impl_->rankPolygons(scene);
     if (layer == Layer::Dynamic) {
         clearInstances();
         addInstance(scene, polygonIds);
@@ -405,6 +422,7 @@ void RayCaster::setLayer(Layer layer, const Scene& scene, std::span<const std::u
 void RayCaster::clearInstances() { impl_->layer(Layer::Dynamic) = Impl::LayerData{}; }
 
 std::size_t RayCaster::addInstance(const Scene& scene, std::span<const std::uint32_t> polygonIds) {
+    if (impl_->frontRank.size() != scene.polygons.size()) impl_->rankPolygons(scene);
     Impl::LayerData& l = impl_->layer(Layer::Dynamic);
     RayCasterPart part;
     RayCasterScenePtr triangles = impl_->newScene("creating an instance's scene");

@@ -78,9 +78,11 @@ class RayCaster {
     // scene (of the frame's size when they lie on none). The polygons the ends lie on never block it. Near an end, a
     // polygon coincident with the end's polygon (its plane within the
     // tolerance of the end point) and facing the same way stands in front of
-    // it exactly when its index is lower: of a stack of coincident surfaces
-    // (duplicates, overlapping coplanar slabs) one is seen, so a receiver
-    // sees their union and not their sum. Embree finds candidates in float;
+    // it exactly when its area is smaller (equal: when its index is lower):
+    // of a stack of coincident surfaces (overlapping coplanar slabs, a rug
+    // laid at a floor's height) one is seen, so a receiver sees their union
+    // and not their sum, and what lies on a surface is seen, not the surface
+    // (as the import cuts a static surface under a smaller one, scene/Covered.h). Embree finds candidates in float;
     // each is placed on the segment in double precision.
     std::uint16_t blocked(Layer layer, std::span<const Segment> segments) const;
 

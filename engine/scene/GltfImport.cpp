@@ -23,6 +23,7 @@
 #include "scene/Buried.h"
 #include "scene/ClosedBackFaces.h"
 #include "scene/Contacts.h"
+#include "scene/Covered.h"
 #include "scene/Rectangles.h"
 
 namespace rad {
@@ -1118,6 +1119,37 @@ class Importer {
         return result;
     }
 
+    static std::string squareMetres(double a) {
+        std::ostringstream text;
+        text.precision(3);
+        text << a << " m^2";
+        return text.str();
+    }
+
+    // The (at most) three objects with the most area left out, and theirs.
+    std::string mostAreas(const std::vector<double>& areaLeftOut) const {
+        std::vector<std::size_t> order(pending_.size());
+        std::iota(order.begin(), order.end(), std::size_t(0));
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t a, std::size_t b) { return areaLeftOut[a] > areaLeftOut[b]; });
+        std::string most;
+        for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k)
+            if (areaLeftOut[order[k]] > 0.0)
+                most += (most.empty() ? "" : ", ") + pending_[order[k]].item + " " + squareMetres(areaLeftOut[order[k]]);
+        return most;
+    }
+
+    // One note line for a cutting step: the polygons cut, the area left out
+    // and the objects that lost most. Returns that area.
+    double noteCut(std::size_t polygonsCut, const std::vector<double>& areaLeftOut, const std::string& where,
+                   const std::string& leftOut) {
+        double total = 0.0;
+        for (double a : areaLeftOut) total += a;
+        note(std::to_string(polygonsCut) + " polygon(s) of static objects cut " + where + "; " + squareMetres(total) +
+             " " + leftOut + " (most: " + mostAreas(areaLeftOut) + ")");
+        return total;
+    }
+
     // Drops degenerate triangles, merges quads, drops duplicate polygons and
     // lays the polygons out object by object.
     Scene finish() {
@@ -1221,30 +1253,23 @@ class Importer {
                  "backs face a closed space no light is in (" +
                  closedWhere + ")");
         const std::vector<std::size_t> duplicates = dropDuplicates(polygons, 1e-9 * std::sqrt(diagonal2));
+        // After the duplicates (a copy covers the same area, and would cut
+        // its original away) and before the solids' cuts (a cut polygon is
+        // no longer the one that covers).
+        const CoveredParts covered = cutCoveredParts(polygons, cut);
+        if (covered.polygonsCut > 0) {
+            notes_.coveredPolygons += covered.polygonsCut;
+            notes_.coveredArea += noteCut(covered.polygonsCut, covered.areaLeftOut,
+                                          "where a smaller one (or an equal, earlier one) lies in their plane facing "
+                                          "the same way",
+                                          "under them left out");
+        }
         // After the duplicates: a copy in place of a solid is inside nothing.
         const BuriedParts buried = cutBuriedParts(polygons, cut, solids);
         if (buried.polygonsCut > 0) {
             notes_.buriedPolygons += buried.polygonsCut;
-            std::vector<std::size_t> order(pending_.size());
-            std::iota(order.begin(), order.end(), std::size_t(0));
-            std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-                return buried.areaLeftOut[a] > buried.areaLeftOut[b];
-            });
-            double total = 0.0;
-            for (double a : buried.areaLeftOut) total += a;
-            notes_.buriedArea += total;
-            const auto area = [](double a) {
-                std::ostringstream text;
-                text.precision(3);
-                text << a << " m^2";
-                return text.str();
-            };
-            std::string most;
-            for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k)
-                if (buried.areaLeftOut[order[k]] > 0.0)
-                    most += (most.empty() ? "" : ", ") + pending_[order[k]].item + " " + area(buried.areaLeftOut[order[k]]);
-            note(std::to_string(buried.polygonsCut) + " polygon(s) of static objects cut where they pass into closed "
-                 "solids; " + area(total) + " inside them left out, neither lit nor drawn (most: " + most + ")");
+            notes_.buriedArea += noteCut(buried.polygonsCut, buried.areaLeftOut, "where they pass into closed solids",
+                                         "inside them left out, neither lit nor drawn");
         }
         // No split leaves a side narrower than two elements at the default
         // area threshold (of the whole scene: a room's may be finer).
@@ -1268,6 +1293,8 @@ class Importer {
             if (polygons[i].empty()) {
                 note(pending_[i].item +
                      (duplicates[i] > 0          ? ": every polygon repeats an earlier one in place, not imported as an object"
+                      : covered.areaLeftOut[i] > 0 && buried.areaLeftOut[i] == 0
+                          ? ": every polygon is covered by others lying in its plane, not imported as an object"
                       : buried.areaLeftOut[i] > 0 ? ": every polygon lies inside closed solids, not imported as an object"
                                                   : ": no polygons, not imported as an object"));
                 continue;

@@ -170,12 +170,18 @@ TEST(Buried, SlabRoomsKeepTheirLightOnTheirSide) {
     Scene scene = loadGltf(g.writeEmbedded(dir).string(), &notes);
     EXPECT_GT(notes.buriedPolygons, 0u);
     // The floor slab's top under the walls and the partition: of its 6.6 x
-    // 3.4, the rooms' floors (6.2 - 0.2) x 3.0 stay.
+    // 3.4, the rooms' floors (6.2 - 0.2) x 3.0 stay. And where the walls'
+    // faces lie in the planes of its faces, smaller (scene/Covered.h): under
+    // their bottoms, the ring 6.6 x 3.4 - 6.2 x 3.0 of its bottom, and at the
+    // corners, where the walls' ends (0.2 x 2.9) meet its sides (0.2 thick),
+    // 8 squares of 0.2 x 0.2.
     double floorArea = 0.0;
     for (const Polygon& p : scene.polygons)
         if (scene.objects[p.object].name == "floor-slab") floorArea += p.area();
     const double slabArea = 2 * (6.6 * 3.4) + 2 * (6.6 * T) + 2 * (3.4 * T);
-    EXPECT_NEAR(floorArea, slabArea - (6.6 * 3.4 - (L - T) * D), 1e-4);
+    const double covered = (6.6 * 3.4 - L * D) + 8 * T * T;
+    EXPECT_NEAR(floorArea, slabArea - (6.6 * 3.4 - (L - T) * D) - covered, 1e-4);
+    EXPECT_GT(notes.coveredPolygons, 0u);
 
     Engine engine(std::move(scene), EngineSettings{});
     const SolveStats& stats = engine.solve();

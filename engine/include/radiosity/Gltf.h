@@ -54,6 +54,12 @@ struct ImportNotes {
     // partition), and the area inside the solids left out.
     std::size_t buriedPolygons = 0;
     double buriedArea = 0.0;
+    // Polygons of static objects cut where a smaller polygon of a static
+    // object lies in their plane, facing the same way (a poster on a wall, a
+    // lamp panel in the ceiling's plane), and the area under them left out
+    // (scene/Covered.h).
+    std::size_t coveredPolygons = 0;
+    double coveredArea = 0.0;
     // Polygons of static objects split along where polygons of static
     // objects stand on them or pass through them (scene/Contacts.h).
     std::size_t contactPolygons = 0;
