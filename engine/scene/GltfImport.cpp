@@ -837,6 +837,7 @@ class Importer {
         const auto index = static_cast<std::uint32_t>(materials_.size());
         materials_.push_back(m);
         if (doubleSided_.count(material)) doubleSided_.insert(index);
+        if (const auto found = alphaMode_.find(material); found != alphaMode_.end()) alphaMode_[index] = found->second;
         untextured_[material] = index;
         return index;
     }
@@ -975,6 +976,8 @@ class Importer {
         const auto index = static_cast<std::uint32_t>(materials_.size());
         materials_.push_back(convertMaterial(gltfIndex));
         if (model_.materials[gltfIndex].doubleSided) doubleSided_.insert(index);
+        if (const std::string& mode = model_.materials[gltfIndex].alphaMode; !mode.empty() && mode != "OPAQUE")
+            alphaMode_[index] = mode;
         materialMap_[gltfIndex] = index;
         return index;
     }
@@ -1139,6 +1142,41 @@ class Importer {
         return most;
     }
 
+    // A note for each light inside one of object i's closed meshes (its
+    // `closed` solids), another's: a punctual light or an emitting triangle.
+    // None of its light leaves the mesh, which is opaque (a bulb in a glass
+    // globe: the room stays dark, and the solve's back_faces warning blames
+    // the globe's normals).
+    void noteEnclosedLights(std::size_t i, const std::vector<WorldTriangle>& kept,
+                            const std::vector<ClosedSolid>& closed) {
+        if (closed.empty()) return;
+        const auto holds = [&](const glm::dvec3& p) {
+            return std::any_of(closed.begin(), closed.end(), [&](const ClosedSolid& s) { return s.holds(p); });
+        };
+        std::vector<std::string> held;
+        for (const PunctualLight& l : lights_)
+            if (holds(l.position)) held.push_back("light '" + l.name + "'");
+        for (std::size_t j = 0; j < pending_.size(); ++j) {
+            if (j == i) continue;
+            for (const WorldTriangle& t : pending_[j].triangles)
+                if (glm::any(glm::greaterThan(materials_[t.material].emission, glm::dvec3(0.0))) &&
+                    holds((t.v[0] + t.v[1] + t.v[2]) / 3.0)) {
+                    held.push_back("the light of " + pending_[j].item);
+                    break;
+                }
+        }
+        if (held.empty()) return;
+        std::string alpha;
+        for (const WorldTriangle& t : kept)
+            if (const auto found = alphaMode_.find(t.material); found != alphaMode_.end()) {
+                alpha = " (its alphaMode " + found->second + " is read as opaque: glass is not modelled)";
+                break;
+            }
+        std::string lights;
+        for (std::size_t k = 0; k < held.size(); ++k) lights += (k == 0 ? "" : ", ") + held[k];
+        note(pending_[i].item + " is a closed mesh around " + lights + ": none of its light leaves the mesh" + alpha);
+    }
+
     // One note line for a cutting step: the polygons cut, the area left out
     // and the objects that lost most. Returns that area.
     double noteCut(std::size_t polygonsCut, const std::vector<double>& areaLeftOut, const std::string& where,
@@ -1200,11 +1238,13 @@ class Importer {
                     kept.push_back(t);
                 }
             }
+            std::vector<std::array<glm::dvec3, 3>> surface;
+            for (const WorldTriangle& t : kept) surface.push_back(t.v);
+            std::vector<ClosedSolid> closed = closedSolids(surface);
+            noteEnclosedLights(i, kept, closed);
             if (!pending_[i].object.dynamic) {
                 cut[i] = 1;
-                std::vector<std::array<glm::dvec3, 3>> surface;
-                for (const WorldTriangle& t : kept) surface.push_back(t.v);
-                for (ClosedSolid& s : closedSolids(surface)) {
+                for (ClosedSolid& s : closed) {
                     // A solid with a light inside holds lit space.
                     const bool lit = std::any_of(lightAt.begin(), lightAt.end(), [&](const auto& light) {
                         return light.second != i && s.holds(light.first);
@@ -1469,6 +1509,7 @@ class Importer {
     std::map<int, std::uint32_t> materialMap_;
     std::optional<std::uint32_t> defaultMaterial_;
     std::set<std::uint32_t> doubleSided_;  // scene material indices
+    std::map<std::uint32_t, std::string> alphaMode_;  // scene material indices not OPAQUE: their alphaMode
     std::size_t backFaces_ = 0;
     std::map<int, std::optional<std::uint32_t>> textureMap_;  // glTF texture -> Scene::textures
     std::vector<std::shared_ptr<const Texture>> textures_;

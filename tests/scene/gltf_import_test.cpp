@@ -739,6 +739,36 @@ TEST(GltfImport, AClosedDoubleSidedMeshKeepsOneFaceWhereItsBacksFaceNoLight) {
     EXPECT_EQ(s.objects[*s.findObject("Housing")].polygonCount, 12u);
     EXPECT_NE(noteWith(notes, "left one-sided").find("'Box'"), std::string::npos);
     EXPECT_EQ(noteWith(notes, "left one-sided").find("Housing"), std::string::npos);
+    // The housing is closed around the bulb: said, and only of it.
+    const std::string enclosed = noteWith(notes, "is a closed mesh around");
+    EXPECT_NE(enclosed.find("node 'Housing' is a closed mesh around the light of node 'Bulb'"), std::string::npos)
+        << enclosed;
+    EXPECT_EQ(enclosed.find("alphaMode"), std::string::npos);  // an opaque material
+    int count = 0;
+    for (const std::string& line : notes.lines) count += line.find("is a closed mesh around") != std::string::npos;
+    EXPECT_EQ(count, 1);
+}
+
+// A bulb in a glass globe, as a tool exports it: alphaMode BLEND, read as
+// opaque. None of the bulb's light leaves the globe, and the note says why
+// (the solve's only other word was a back_faces warning blaming the globe's
+// normals).
+TEST(GltfImport, ALightInAClosedGlassGlobeIsNoted) {
+    TempDir dir;
+    GltfBuilder g;
+    const int glass = g.addMaterial(
+        R"({"name":"glass","alphaMode":"BLEND","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,0.15]}})");
+    const int cube = addCubeMesh(g, glass);
+    g.addNode("\"name\":\"globe\",\"mesh\":" + std::to_string(cube) +
+              ",\"translation\":[0,2,0],\"scale\":[0.3,0.3,0.3]");
+    g.addNode(R"("name":"bulb","translation":[0,2,0],"extensions":{"KHR_lights_punctual":{"light":0}})");
+    g.extraTopLevel = R"("extensionsUsed":["KHR_lights_punctual"],)"
+                      R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":5}]}},)";
+    ImportNotes notes;
+    loadGltf(path(g.writeEmbedded(dir)), &notes);
+    const std::string enclosed = noteWith(notes, "is a closed mesh around");
+    EXPECT_NE(enclosed.find("node 'globe' is a closed mesh around light 'bulb'"), std::string::npos) << enclosed;
+    EXPECT_NE(enclosed.find("alphaMode BLEND is read as opaque"), std::string::npos) << enclosed;
 }
 
 // A node marked extras.dynamic (or extras.object) is one object with its
