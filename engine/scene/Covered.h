@@ -4,13 +4,14 @@
 // A poster flush with its wall, a rug at the floor's height, a light panel
 // in the ceiling's plane, a CAD export that lays a panel over a wall's
 // face: two polygons in one plane, facing the same way, overlap. Of
-// coincident surfaces only one is seen (RayCaster: the one in front, see
-// Scene.h's frontOrder), and the other is dark where they overlap: a lamp
-// hidden so lights nothing, and the display draws both, so that the lit
-// and the dark one fight for depth. The import cuts the larger polygon away
-// where a smaller one covers it: what is laid on a surface is seen, whatever
-// the order of the two in the file. Objects marked dynamic neither cut nor
-// are cut (they move off what they lay on; the rays' rule decides there).
+// coincident surfaces only one is seen (RayCaster::blocked: the smaller),
+// and the other is dark where they overlap, while the display draws both:
+// the lit and the dark one fight for depth. (When the earlier one was seen,
+// a lamp in a ceiling's plane listed after the ceiling lit nothing.) The
+// import cuts the larger polygon away where a smaller one covers it: what is
+// laid on a surface is seen, whatever the order of the two in the file.
+// Objects marked dynamic neither cut nor are cut (they move off what they
+// lay on; the rays' rule decides there).
 
 #include <cstddef>
 #include <span>
