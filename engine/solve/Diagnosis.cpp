@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "scene/Pieces.h"
+
 namespace rad {
 namespace {
 
@@ -145,6 +147,62 @@ std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double thres
       << "% of the emitted light is lost, neither absorbed, escaped nor taken by back faces: is a light "
          "source hidden under another surface, or are the links too coarse (a smaller --epsilon)?";
     return {{"lost_light", m.str(), {}, share}};
+}
+
+std::vector<Warning> trappedLightWarnings(const Scene& scene, double gapShare) {
+    std::vector<std::uint32_t> emitting;
+    std::vector<Aabb> boxes;
+    for (const Polygon& p : scene.polygons) boxes.push_back(boxOf(p));
+    for (std::uint32_t i = 0; i < scene.polygons.size(); ++i)
+        if (luminance(scene.materials[scene.polygons[i].material].emission) > 0.0) emitting.push_back(i);
+    if (emitting.empty()) return {};
+    BoxGrid grid(boxes);
+    std::vector<double> power(scene.objects.size(), 0.0), trapped(scene.objects.size(), 0.0);
+    std::vector<std::uint32_t> facing(scene.objects.size(), 0);  // the object in front, for the message
+    double total = 0.0;
+    for (std::uint32_t e : emitting) {
+        const Polygon& lamp = scene.polygons[e];
+        const double area = lamp.area();
+        const double p = area * luminance(scene.materials[lamp.material].emission);
+        power[lamp.object] += p;
+        total += p;
+        const glm::dvec3 n = lamp.normal(), centre = lamp.centroid();
+        const double reach = gapShare * std::sqrt(area);
+        Aabb ahead = boxes[e];
+        ahead.hi += glm::max(n, glm::dvec3(0.0)) * reach;
+        ahead.lo += glm::min(n, glm::dvec3(0.0)) * reach;
+        for (std::uint32_t q : grid.near(ahead)) {
+            const Polygon& other = scene.polygons[q];
+            if (other.object == lamp.object) continue;
+            const glm::dvec3 m = other.normal();
+            if (glm::dot(m, n) > -1.0 + 1e-6) continue;  // facing the lamp
+            const double gap = glm::dot(n, other.vertices[0] - centre);
+            if (!(gap > 0.0) || gap > reach) continue;
+            // The lamp's centre, seen across the gap, lies on the other.
+            const glm::dvec3 x = centre + gap * n;
+            bool inside = true;
+            for (int k = 0; k < other.vertexCount && inside; ++k)
+                inside = glm::dot(glm::cross(other.vertices[(k + 1) % other.vertexCount] - other.vertices[k],
+                                             x - other.vertices[k]),
+                                  m) >= 0.0;
+            if (!inside) continue;
+            trapped[lamp.object] += p;
+            facing[lamp.object] = other.object;
+            break;
+        }
+    }
+    std::vector<Warning> out;
+    for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
+        if (!(trapped[o] > 0.5 * power[o])) continue;
+        const std::string& lamp = scene.objects[o].name;
+        const std::string& other = scene.objects[facing[o]].name;
+        std::ostringstream m;
+        m << std::lround(100.0 * trapped[o] / power[o]) << "% of the light of '" << lamp << "' leaves it facing '"
+          << other << "' close in front of it, which faces back: the light is trapped between them (is the normal of '"
+          << lamp << "' flipped?)";
+        out.push_back({"trapped_light", m.str(), {lamp, other}, trapped[o] / total});
+    }
+    return out;
 }
 
 std::size_t clearNonFinite(Hierarchy& h) {
