@@ -151,11 +151,11 @@ std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double thres
 
 std::vector<Warning> trappedLightWarnings(const Scene& scene, double gapShare) {
     std::vector<std::uint32_t> emitting;
-    std::vector<Aabb> boxes;
-    for (const Polygon& p : scene.polygons) boxes.push_back(boxOf(p));
     for (std::uint32_t i = 0; i < scene.polygons.size(); ++i)
         if (luminance(scene.materials[scene.polygons[i].material].emission) > 0.0) emitting.push_back(i);
     if (emitting.empty()) return {};
+    std::vector<Aabb> boxes;
+    for (const Polygon& p : scene.polygons) boxes.push_back(boxOf(p));
     BoxGrid grid(boxes);
     std::vector<double> power(scene.objects.size(), 0.0), trapped(scene.objects.size(), 0.0);
     std::vector<std::uint32_t> facing(scene.objects.size(), 0);  // the object in front, for the message
