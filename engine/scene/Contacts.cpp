@@ -13,10 +13,31 @@ namespace {
 // share of the polygon's width along it.
 constexpr double kDividing = 0.5;
 
+// An emitting polygon lying parallel in front of another and facing it,
+// nearer than this share of the square root of its area, splits it along
+// its outline (a cove light facing its wall, a panel under a ceiling with
+// its normal flipped): the light trapped in the gap stays on the pieces
+// under it, and elements across the outline do not shine it out.
+constexpr double kGapShare = 0.1;
+
+// The segments of `other`'s outline, seen along the normal of the plane
+// (normal, offset) it lies parallel to in front of and faces, nearer than
+// kGapShare of its size; none otherwise.
+std::vector<std::pair<glm::dvec3, glm::dvec3>> outlineAcrossGap(const Polygon& other, const glm::dvec3& normal,
+                                                               double offset, double tolerance) {
+    if (glm::dot(other.normal(), normal) > -1.0 + 1e-9) return {};
+    const double gap = glm::dot(normal, other.vertices[0]) - offset;
+    if (!(gap > tolerance) || gap > kGapShare * std::sqrt(other.area())) return {};
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> out;
+    for (int k = 0; k < other.vertexCount; ++k)
+        out.emplace_back(other.vertices[k] - gap * normal, other.vertices[(k + 1) % other.vertexCount] - gap * normal);
+    return out;
+}
+
 }  // namespace
 
-std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
-                            std::span<const char> split, double narrowest) {
+std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons, std::span<const char> split,
+                            double narrowest, std::span<const char> emits) {
     // The polygons that may split and be split: those of the objects to split.
     struct Ref {
         std::uint32_t object, index;
@@ -46,6 +67,18 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
         around.lo -= glm::dvec3(tolerance);
         around.hi += glm::dvec3(tolerance);
         const Piece whole = pieceOf(p);
+        // Emitters close in front, facing it: the box reaches out along the
+        // normal as far as the largest gap kGapShare allows here.
+        Aabb ahead = around;
+        ahead.hi += glm::max(normal, glm::dvec3(0.0)) * (kGapShare * glm::length(box.extent()));
+        ahead.lo += glm::min(normal, glm::dvec3(0.0)) * (kGapShare * glm::length(box.extent()));
+        for (std::uint32_t q : grid.near(ahead)) {
+            if (refs[q].object == refs[r].object || !overlaps(ahead, boxes[q], 0.0)) continue;
+            const Polygon& other = polygons[refs[q].object][refs[q].index];
+            if (other.material >= emits.size() || !emits[other.material]) continue;
+            for (auto [a, b] : outlineAcrossGap(other, normal, offset, tolerance))
+                if (clipToPiece(whole, normal, a, b, tolerance)) segments[r].emplace_back(a, b);
+        }
         for (std::uint32_t q : grid.near(around)) {
             // Another object's: a partition on a floor, not a shelf on its
             // bookcase's side (refinement divides around an object's own
@@ -124,9 +157,14 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
                     const glm::dvec3& u = piece.vertices[k];
                     const glm::dvec3& v = piece.vertices[(k + 1) % piece.vertexCount];
                     for (const auto& [a, b] : lines) {
+                        // On the line, and where the segment is (an outline
+                        // seen across a gap ends inside the polygon).
                         const glm::dvec3 across = glm::normalize(glm::cross(normal, b - a));
+                        const double length = glm::length(b - a);
+                        const double t = glm::dot(0.5 * (u + v) - a, (b - a) / length);
                         if (std::abs(glm::dot(across, u - a)) <= tolerance &&
-                            std::abs(glm::dot(across, v - a)) <= tolerance) {
+                            std::abs(glm::dot(across, v - a)) <= tolerance && t >= -tolerance &&
+                            t <= length + tolerance) {
                             piece.creases |= static_cast<std::uint8_t>(1u << k);
                             break;
                         }

@@ -32,7 +32,10 @@ namespace rad {
 // (books on a shelf: slots of a few millimetres are left to refinement).
 // The pieces are convex polygons of at most four vertices, texture
 // coordinates following.
+// `emits` (per material): an emitting polygon of another object lying
+// close in front of a polygon and facing it splits it along its outline.
 std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
-                            std::span<const char> split, double narrowest = 0.0);
+                            std::span<const char> split, double narrowest = 0.0,
+                            std::span<const char> emits = {});
 
 }  // namespace rad

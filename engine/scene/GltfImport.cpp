@@ -1316,8 +1316,11 @@ class Importer {
         double area = 0.0;
         for (const std::vector<Polygon>& object : polygons)
             for (const Polygon& p : object) area += p.area();
+        std::vector<char> emits(materials_.size(), 0);
+        for (std::size_t m = 0; m < materials_.size(); ++m)
+            emits[m] = glm::any(glm::greaterThan(materials_[m].emission, glm::dvec3(0.0)));
         const std::size_t splitAtContact =
-            splitAtContacts(polygons, cut, 2.0 * std::sqrt(kDefaultMinAreaShare * area));
+            splitAtContacts(polygons, cut, 2.0 * std::sqrt(kDefaultMinAreaShare * area), emits);
         notes_.contactPolygons += splitAtContact;
         if (splitAtContact > 0)
             note(std::to_string(splitAtContact) +
