@@ -44,9 +44,6 @@ constexpr double kBackFaceWarningShare = 0.05;
 // Above this share of the emitted light lost the solve warns (the shipped
 // scenes: -0.4% to 1.7%, `dark-room` the most).
 constexpr double kLostWarningShare = 0.1;
-// An emitter faced by another surface nearer than this share of the square
-// root of its area (a 0.8 x 0.7 m panel: 7.5 cm) traps its light.
-constexpr double kTrappedGapShare = 0.1;
 constexpr double kRoundTolerance = 3e-3;
 // How far from the scene as loaded, in its sizes, an object or light may be
 // moved. Rays are traced in single precision in that scene's frame
@@ -742,7 +739,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     // Unconverged, light still on its way counts as lost: the message says why it stopped.
     if (st.converged)
         for (Warning& w : lostLightWarnings(st.energy, kLostWarningShare)) st.warnings.push_back(std::move(w));
-    for (Warning& w : trappedLightWarnings(s.scene, kTrappedGapShare)) st.warnings.push_back(std::move(w));
+    for (Warning& w : trappedLightWarnings(s.scene)) st.warnings.push_back(std::move(w));
     // The full sweeps left every receiver's irradiance consistent with the
     // sources' gathered B: the in-place updates start from here.
     s.refiner.takeDirty();

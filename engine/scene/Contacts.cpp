@@ -13,24 +13,16 @@ namespace {
 // share of the polygon's width along it.
 constexpr double kDividing = 0.5;
 
-// An emitting polygon lying parallel in front of another and facing it,
-// nearer than this share of the square root of its area, splits it along
-// its outline (a cove light facing its wall, a panel under a ceiling with
-// its normal flipped): the light trapped in the gap stays on the pieces
-// under it, and elements across the outline do not shine it out.
-constexpr double kGapShare = 0.1;
-
-// The segments of `other`'s outline, seen along the normal of the plane
-// (normal, offset) it lies parallel to in front of and faces, nearer than
-// kGapShare of its size; none otherwise.
-std::vector<std::pair<glm::dvec3, glm::dvec3>> outlineAcrossGap(const Polygon& other, const glm::dvec3& normal,
-                                                               double offset, double tolerance) {
-    if (glm::dot(other.normal(), normal) > -1.0 + 1e-9) return {};
-    const double gap = glm::dot(normal, other.vertices[0]) - offset;
-    if (!(gap > tolerance) || gap > kGapShare * std::sqrt(other.area())) return {};
+// The segments of `emitter`'s outline seen on the plane of `surface`, when
+// it traps its light in front of it (trappingGap); none otherwise.
+std::vector<std::pair<glm::dvec3, glm::dvec3>> outlineAcrossGap(const Polygon& emitter, const Polygon& surface,
+                                                               double tolerance) {
+    const double gap = trappingGap(emitter, surface, tolerance);
+    if (gap < 0.0) return {};
+    const glm::dvec3 down = gap * emitter.normal();  // from the emitter onto the surface
     std::vector<std::pair<glm::dvec3, glm::dvec3>> out;
-    for (int k = 0; k < other.vertexCount; ++k)
-        out.emplace_back(other.vertices[k] - gap * normal, other.vertices[(k + 1) % other.vertexCount] - gap * normal);
+    for (int k = 0; k < emitter.vertexCount; ++k)
+        out.emplace_back(emitter.vertices[k] + down, emitter.vertices[(k + 1) % emitter.vertexCount] + down);
     return out;
 }
 
@@ -68,15 +60,15 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons, std::sp
         around.hi += glm::dvec3(tolerance);
         const Piece whole = pieceOf(p);
         // Emitters close in front, facing it: the box reaches out along the
-        // normal as far as the largest gap kGapShare allows here.
+        // normal as far as the largest gap kTrappedGapShare allows here.
         Aabb ahead = around;
-        ahead.hi += glm::max(normal, glm::dvec3(0.0)) * (kGapShare * glm::length(box.extent()));
-        ahead.lo += glm::min(normal, glm::dvec3(0.0)) * (kGapShare * glm::length(box.extent()));
+        ahead.hi += glm::max(normal, glm::dvec3(0.0)) * (kTrappedGapShare * glm::length(box.extent()));
+        ahead.lo += glm::min(normal, glm::dvec3(0.0)) * (kTrappedGapShare * glm::length(box.extent()));
         for (std::uint32_t q : grid.near(ahead)) {
             if (refs[q].object == refs[r].object || !overlaps(ahead, boxes[q], 0.0)) continue;
             const Polygon& other = polygons[refs[q].object][refs[q].index];
             if (other.material >= emits.size() || !emits[other.material]) continue;
-            for (auto [a, b] : outlineAcrossGap(other, normal, offset, tolerance))
+            for (auto [a, b] : outlineAcrossGap(other, p, tolerance))
                 if (clipToPiece(whole, normal, a, b, tolerance)) segments[r].emplace_back(a, b);
         }
         for (std::uint32_t q : grid.near(around)) {
@@ -175,6 +167,13 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons, std::sp
     }
     polygons = std::move(out);
     return count;
+}
+
+double trappingGap(const Polygon& emitter, const Polygon& surface, double tolerance) {
+    const glm::dvec3 n = emitter.normal();
+    if (glm::dot(surface.normal(), n) > -1.0 + 1e-9) return -1.0;  // facing the emitter
+    const double gap = glm::dot(n, surface.vertices[0] - emitter.vertices[0]);
+    return gap > tolerance && gap <= kTrappedGapShare * std::sqrt(emitter.area()) ? gap : -1.0;
 }
 
 }  // namespace rad

@@ -32,10 +32,21 @@ namespace rad {
 // (books on a shelf: slots of a few millimetres are left to refinement).
 // The pieces are convex polygons of at most four vertices, texture
 // coordinates following.
-// `emits` (per material): an emitting polygon of another object lying
-// close in front of a polygon and facing it splits it along its outline.
+// `emits` (per material): an emitting polygon of another object that traps
+// its light in front of a polygon (trappingGap) splits it along its outline.
 std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons,
                             std::span<const char> split, double narrowest = 0.0,
                             std::span<const char> emits = {});
+
+// An emitting polygon traps its light where a surface lies parallel in front
+// of it and faces it, nearer than this share of the square root of its area
+// (a panel 1 cm under a ceiling with its normal flipped, a cove light facing
+// its wall; a 1 x 1 m panel: up to 10 cm, not an uplight 30 cm under it).
+inline constexpr double kTrappedGapShare = 0.1;
+
+// How far `surface` lies in front of `emitter`, when it is parallel, faces
+// it and is nearer than kTrappedGapShare of its size (and farther than
+// `tolerance`); a negative value otherwise.
+double trappingGap(const Polygon& emitter, const Polygon& surface, double tolerance = 0.0);
 
 }  // namespace rad

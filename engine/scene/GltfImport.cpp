@@ -1147,8 +1147,11 @@ class Importer {
     // None of its light leaves the mesh, which is opaque (a bulb in a glass
     // globe: the room stays dark, and the solve's back_faces warning blames
     // the globe's normals).
+    // `emitters`: the centre of each emitting triangle and its object, in
+    // object order.
     void noteEnclosedLights(std::size_t i, const std::vector<WorldTriangle>& kept,
-                            const std::vector<ClosedSolid>& closed) {
+                            const std::vector<ClosedSolid>& closed,
+                            const std::vector<std::pair<glm::dvec3, std::size_t>>& emitters) {
         if (closed.empty()) return;
         const auto holds = [&](const glm::dvec3& p) {
             return std::any_of(closed.begin(), closed.end(), [&](const ClosedSolid& s) { return s.holds(p); });
@@ -1156,15 +1159,12 @@ class Importer {
         std::vector<std::string> held;
         for (const PunctualLight& l : lights_)
             if (holds(l.position)) held.push_back("light '" + l.name + "'");
-        for (std::size_t j = 0; j < pending_.size(); ++j) {
-            if (j == i) continue;
-            for (const WorldTriangle& t : pending_[j].triangles)
-                if (glm::any(glm::greaterThan(materials_[t.material].emission, glm::dvec3(0.0))) &&
-                    holds((t.v[0] + t.v[1] + t.v[2]) / 3.0)) {
-                    held.push_back("the light of " + pending_[j].item);
-                    break;
-                }
-        }
+        std::size_t last = pending_.size();  // the emitting object named last: each once
+        for (const auto& [centre, j] : emitters)
+            if (j != i && j != last && holds(centre)) {
+                held.push_back("the light of " + pending_[j].item);
+                last = j;
+            }
         if (held.empty()) return;
         std::string alpha;
         for (const WorldTriangle& t : kept)
@@ -1218,6 +1218,11 @@ class Importer {
                    std::tie(b.first.x, b.first.y, b.first.z, b.second);
         });
         lightAt.erase(std::unique(lightAt.begin(), lightAt.end()), lightAt.end());
+        std::vector<std::pair<glm::dvec3, std::size_t>> emitterCentres;
+        for (std::size_t i = 0; i < pending_.size(); ++i)
+            for (const WorldTriangle& t : pending_[i].triangles)
+                if (glm::any(glm::greaterThan(materials_[t.material].emission, glm::dvec3(0.0))))
+                    emitterCentres.emplace_back((t.v[0] + t.v[1] + t.v[2]) / 3.0, i);
         std::size_t frontOnly = 0;
         std::string closedWhere;
         int closedListed = 0;
@@ -1241,7 +1246,7 @@ class Importer {
             std::vector<std::array<glm::dvec3, 3>> surface;
             for (const WorldTriangle& t : kept) surface.push_back(t.v);
             std::vector<ClosedSolid> closed = closedSolids(surface);
-            noteEnclosedLights(i, kept, closed);
+            noteEnclosedLights(i, kept, closed, emitterCentres);
             if (!pending_[i].object.dynamic) {
                 cut[i] = 1;
                 for (ClosedSolid& s : closed) {

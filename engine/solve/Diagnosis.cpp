@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "scene/Contacts.h"
 #include "scene/Pieces.h"
 
 namespace rad {
@@ -149,7 +150,7 @@ std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double thres
     return {{"lost_light", m.str(), {}, share}};
 }
 
-std::vector<Warning> trappedLightWarnings(const Scene& scene, double gapShare) {
+std::vector<Warning> trappedLightWarnings(const Scene& scene) {
     std::vector<std::uint32_t> emitting;
     for (std::uint32_t i = 0; i < scene.polygons.size(); ++i)
         if (luminance(scene.materials[scene.polygons[i].material].emission) > 0.0) emitting.push_back(i);
@@ -167,19 +168,17 @@ std::vector<Warning> trappedLightWarnings(const Scene& scene, double gapShare) {
         power[lamp.object] += p;
         total += p;
         const glm::dvec3 n = lamp.normal(), centre = lamp.centroid();
-        const double reach = gapShare * std::sqrt(area);
+        const double reach = kTrappedGapShare * std::sqrt(area);
         Aabb ahead = boxes[e];
         ahead.hi += glm::max(n, glm::dvec3(0.0)) * reach;
         ahead.lo += glm::min(n, glm::dvec3(0.0)) * reach;
         for (std::uint32_t q : grid.near(ahead)) {
             const Polygon& other = scene.polygons[q];
             if (other.object == lamp.object) continue;
-            const glm::dvec3 m = other.normal();
-            if (glm::dot(m, n) > -1.0 + 1e-6) continue;  // facing the lamp
-            const double gap = glm::dot(n, other.vertices[0] - centre);
-            if (!(gap > 0.0) || gap > reach) continue;
+            const double gap = trappingGap(lamp, other);
+            if (gap < 0.0) continue;
             // The lamp's centre, seen across the gap, lies on the other.
-            const glm::dvec3 x = centre + gap * n;
+            const glm::dvec3 m = other.normal(), x = centre + gap * n;
             bool inside = true;
             for (int k = 0; k < other.vertexCount && inside; ++k)
                 inside = glm::dot(glm::cross(other.vertices[(k + 1) % other.vertexCount] - other.vertices[k],

@@ -33,12 +33,11 @@ std::vector<Warning> backFaceWarnings(const Scene& scene, const EnergyBalance& e
 // what a point sees. The solve converges all the same. None otherwise.
 std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double threshold);
 
-// A warning for each emitting object most of whose power faces another
-// object's surface close in front of it, facing back (a lamp panel 1 cm
-// under the ceiling with its normal flipped, facing up): the light is
-// trapped in the gap. `gapShare`: how close, as a share of the square root
-// of the emitting polygon's area. None otherwise.
-std::vector<Warning> trappedLightWarnings(const Scene& scene, double gapShare);
+// A warning for each emitting object more than half of whose power leaves
+// polygons that trap it (scene/Contacts.h, trappingGap: another object's
+// surface close in front, facing back, as a lamp panel 1 cm under the
+// ceiling with its normal flipped). None otherwise.
+std::vector<Warning> trappedLightWarnings(const Scene& scene);
 
 // Sets every non-finite radiosity and irradiance to zero, so that no NaN
 // reaches a report, an image or an export. Returns how many were.

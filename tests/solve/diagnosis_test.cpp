@@ -40,16 +40,16 @@ TEST(Diagnosis, ALampFacingTheCeilingCloseByIsSaid) {
         test::addQuadObject(s, "lamp", light, {q});
         return s;
     };
-    const std::vector<Warning> flipped = trappedLightWarnings(room(0.01, true), 0.1);
+    const std::vector<Warning> flipped = trappedLightWarnings(room(0.01, true));
     ASSERT_EQ(flipped.size(), 1u);
     EXPECT_EQ(flipped[0].kind, "trapped_light");
     EXPECT_EQ(flipped[0].objects, (std::vector<std::string>{"lamp", "room"}));
     EXPECT_DOUBLE_EQ(flipped[0].amount, 1.0);
     EXPECT_NE(flipped[0].message.find("is the normal of 'lamp' flipped?"), std::string::npos) << flipped[0].message;
-    EXPECT_TRUE(trappedLightWarnings(room(0.01, false), 0.1).empty());  // facing the room
+    EXPECT_TRUE(trappedLightWarnings(room(0.01, false)).empty());  // facing the room
     // 30 cm under the ceiling, facing it (an uplight): farther than a tenth
     // of the panel's size (7.5 cm), its light spreads over the ceiling.
-    EXPECT_TRUE(trappedLightWarnings(room(0.3, true), 0.1).empty());
+    EXPECT_TRUE(trappedLightWarnings(room(0.3, true)).empty());
 }
 
 }  // namespace
