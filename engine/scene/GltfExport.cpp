@@ -1,4 +1,5 @@
 #include "radiosity/Gltf.h"
+#include "radiosity/Snapshot.h"
 
 #include <tiny_gltf.h>
 
@@ -137,7 +138,9 @@ tinygltf::Model buildModel(const MeshSnapshot& mesh) {
 
 void exportGltf(const MeshSnapshot& mesh, const std::string& path) {
     validate(mesh, path);
-    const tinygltf::Model model = buildModel(mesh);
+    // A frame's mesh holds room for polygons to grow in (compactMesh): the
+    // file gets none of it.
+    const tinygltf::Model model = buildModel(compactMesh(mesh));
     const std::string tmp = path + ".tmp";
     tinygltf::TinyGLTF writer;
     const bool binary = isGlb(path);

@@ -118,6 +118,21 @@ TEST(GltfExport, GltfRoundTripKeepsPositionsAndColours) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir / ""), fs::directory_iterator()), 1);
 }
 
+// A frame's mesh keeps room for polygons to grow in (compactMesh): a
+// vertex no triangle uses and degenerate triangles on a vertex. The file
+// holds the mesh without them, its bounds those of the vertices drawn.
+TEST(GltfExport, RoomToGrowIsNotWritten) {
+    TempDir dir;
+    MeshSnapshot padded = sampleMesh();
+    padded.positions.insert(padded.positions.begin() + 3, glm::vec3(50, 50, 50));
+    padded.normals.insert(padded.normals.begin() + 3, glm::vec3(0, 0, 1));
+    padded.colors.insert(padded.colors.begin() + 3, glm::vec3(5, 5, 5));
+    padded.indices = {0, 1, 2, 0, 2, 4, 2, 2, 2, 2, 5, 4, 1, 1, 1};
+    const fs::path file = dir / "out.gltf";
+    exportGltf(padded, file.string());
+    expectSameMesh(sampleMesh(), file);
+}
+
 // A snapshot far from the world's origin has positions relative to its own
 // (MeshSnapshot::origin): the file keeps them and puts the origin, a double
 // in the JSON, in the node's translation. A snapshot at the origin has none.

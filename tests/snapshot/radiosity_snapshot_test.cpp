@@ -111,7 +111,8 @@ TEST(RadiositySnapshot, TVerticesTakeTheValueAlongTheCoarseEdge) {
 
 // A frame re-meshes only the polygons whose leaves changed (SnapshotCache):
 // after radiosity changes, a subdivision, a removal and a moved polygon, the
-// cached mesh is the mesh made from scratch, vertex for vertex.
+// cached mesh is the mesh made from scratch, vertex for vertex, but for the
+// room its slots keep to grow in (compactMesh drops it).
 TEST(RadiositySnapshot, CachedPartsGiveTheMeshMadeFromScratch) {
     Scene s = test::roomWithBlock();
     Hierarchy h(s, 1e-3);
@@ -125,11 +126,12 @@ TEST(RadiositySnapshot, CachedPartsGiveTheMeshMadeFromScratch) {
     MeshSnapshot cached;
     const auto expectSame = [&](const char* after) {
         makeRadiositySnapshot(s, h, cached, cache);
-        const MeshSnapshot fresh = makeRadiositySnapshot(s, h);
-        ASSERT_EQ(cached.positions, fresh.positions) << after;
-        ASSERT_EQ(cached.normals, fresh.normals) << after;
-        ASSERT_EQ(cached.colors, fresh.colors) << after;
-        ASSERT_EQ(cached.indices, fresh.indices) << after;
+        const MeshSnapshot fresh = makeRadiositySnapshot(s, h), kept = compactMesh(cached);
+        ASSERT_EQ(compactMesh(fresh).positions.size(), fresh.positions.size()) << "a mesh from scratch has no room to grow";
+        ASSERT_EQ(kept.positions, fresh.positions) << after;
+        ASSERT_EQ(kept.normals, fresh.normals) << after;
+        ASSERT_EQ(kept.colors, fresh.colors) << after;
+        ASSERT_EQ(kept.indices, fresh.indices) << after;
     };
     expectSame("the first build");
     const ElementId wall = h.polygonElement(0);
@@ -190,10 +192,10 @@ struct TiledWall {
     // A build without a stop leaves nothing, and gives the mesh made from scratch.
     void expectTheMeshMadeFromScratch(const char* after) {
         EXPECT_EQ(build(), 0u) << after;
-        const MeshSnapshot fresh = makeRadiositySnapshot(scene, h);
-        ASSERT_EQ(cached.positions, fresh.positions) << after;
-        ASSERT_EQ(cached.colors, fresh.colors) << after;
-        ASSERT_EQ(cached.indices, fresh.indices) << after;
+        const MeshSnapshot fresh = makeRadiositySnapshot(scene, h), kept = compactMesh(cached);
+        ASSERT_EQ(kept.positions, fresh.positions) << after;
+        ASSERT_EQ(kept.colors, fresh.colors) << after;
+        ASSERT_EQ(kept.indices, fresh.indices) << after;
     }
 };
 
@@ -224,6 +226,35 @@ TEST(RadiositySnapshot, CachedTilesAcrossResizesAndAStopGiveTheMeshMadeFromScrat
     for (std::size_t v = 0; v < w.cached.colors.size(); ++v) same += w.cached.colors[v] == before.colors[v];
     EXPECT_GT(same, 0u);
     w.expectTheMeshMadeFromScratch("the next build");
+}
+
+// A tile that outgrows its slot moves the mesh to a new layout and gets a
+// larger slot: its next subdivision and the removal of its children fit in
+// that slot, and the mesh keeps its layout (its size), the same mesh as one
+// made from scratch once compacted.
+TEST(RadiositySnapshot, APartThatChangesSizeWithinItsSlotKeepsTheLayout) {
+    TiledWall w;
+    w.paint(1.0);
+    w.expectTheMeshMadeFromScratch("the first build");
+    w.cache.assembleSeconds = 3600.0;  // as if joining all parts anew took an hour: builds patch
+    const std::size_t before = w.cached.positions.size();
+    const ElementId tile = w.h.polygonElement(44);
+    w.h.subdivide(tile);
+    w.paint(1.5);
+    w.expectTheMeshMadeFromScratch("a tile subdivided");
+    const std::size_t grown = w.cached.positions.size(), grownIndices = w.cached.indices.size();
+    EXPECT_GT(grown, before + 5) << "the tile's new slot has room beyond its 9 vertices";
+    w.h.subdivide(w.h[tile].children[2]);
+    w.paint(1.7);
+    w.expectTheMeshMadeFromScratch("a quarter of it subdivided");
+    EXPECT_EQ(w.cached.positions.size(), grown);
+    EXPECT_EQ(w.cached.indices.size(), grownIndices);
+    w.h.removeChildren(w.h[tile].children[2]);
+    w.h.removeChildren(tile);
+    w.paint(2.0);
+    w.expectTheMeshMadeFromScratch("its children removed");
+    EXPECT_EQ(w.cached.positions.size(), grown) << "a part that shrinks keeps its slot";
+    EXPECT_EQ(w.cached.indices.size(), grownIndices);
 }
 
 // A build after one that left resized parts waiting makes the new layout

@@ -49,6 +49,12 @@ struct MeshSnapshot {
     std::size_t modifiedLinks = 0, modifiedLinksShown = 0;
 };
 
+// The mesh without what holds room for growth in a frame's mesh: its
+// degenerate triangles (three equal indices) and the vertices no triangle
+// uses, the rest in order. A frame's mesh keeps slots for polygons to grow
+// in (the engine's snapshot cache); a mesh made from scratch has none.
+MeshSnapshot compactMesh(const MeshSnapshot& mesh);
+
 struct SnapshotOverlays {
     bool modifiedLinks = false;
     bool changedElements = false;
