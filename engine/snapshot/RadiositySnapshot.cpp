@@ -507,7 +507,8 @@ void relayout(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::u
 // vertices were in or are in now are summed again from the parts' own
 // values, in key order as a full build sums them.
 // `walked`: how long the walk along the keys took (its groups' sums
-// included). Returns whether the mesh moved to a new layout.
+// included; 0 when the groups were found by their keys). Returns whether
+// the mesh moved to a new layout.
 bool patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint8_t>& remeshed, double& walked) {
     walked = 0.0;
     std::vector<std::size_t> changed;
@@ -630,13 +631,38 @@ bool patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
     std::sort(gone.begin(), gone.end());
     gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
     // Summed again: every group with an outline vertex of a changed part,
-    // and every group a moved vertex left, found in one walk along the keys
-    // (new light on every polygon, as an edit of a light makes, sorted them
-    // all each frame).
+    // and every group a moved vertex left.
+    const std::vector<std::pair<Key, std::uint32_t>>& keyed = cache.keyed;
+    const auto smooth = [&](std::size_t a, std::size_t b) {
+        smoothGroup(keyed, a, b, mesh, own, weight, [&](std::uint32_t v) { return scaleOf(mesh, cache, v); });
+    };
+    // Few groups to sum again (a chair's parts coloured again among the
+    // building floor's 600,000 keys): each is found by its key; the walk
+    // along all keys took 2.5 ms of every frame there.
+    std::size_t outlineVertices = 0;
+    for (std::size_t p : changed) outlineVertices += cache.parts[p].outline.size();
+    if ((outlineVertices + gone.size()) * cache.keysPerSearch < keyed.size()) {
+        std::vector<Key> keys = std::move(gone);
+        for (std::size_t p : changed)
+            for (std::uint32_t local : cache.parts[p].outline)
+                keys.push_back(vertexKey(mesh, static_cast<std::uint32_t>(cache.vertexAt[p] + local),
+                                         cache.keyOrigin - mesh.origin, cache.keyCell));
+        std::sort(keys.begin(), keys.end());
+        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+        const auto before = [](const std::pair<Key, std::uint32_t>& entry, const Key& key) { return entry.first < key; };
+        for (const Key& key : keys) {
+            const auto a = std::lower_bound(keyed.begin(), keyed.end(), key, before);
+            auto b = a;
+            while (b != keyed.end() && b->first == key) ++b;
+            if (a != b) smooth(static_cast<std::size_t>(a - keyed.begin()), static_cast<std::size_t>(b - keyed.begin()));
+        }
+        return resized;
+    }
+    // Many: found in one walk along the keys (new light on every polygon, as
+    // an edit of a light makes, sorted them all each frame).
     std::vector<std::uint8_t> mine(mesh.positions.size(), 0);
     for (std::size_t p : changed)
         for (std::uint32_t local : cache.parts[p].outline) mine[cache.vertexAt[p] + local] = 1;
-    const std::vector<std::pair<Key, std::uint32_t>>& keyed = cache.keyed;
     const auto walkStart = std::chrono::steady_clock::now();
     std::size_t g = 0;
     for (std::size_t a = 0, b = 0; a < keyed.size(); a = b) {
@@ -644,7 +670,7 @@ bool patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
         while (g < gone.size() && gone[g] < key) ++g;
         bool any = g < gone.size() && gone[g] == key;
         for (b = a; b < keyed.size() && keyed[b].first == key; ++b) any = any || mine[keyed[b].second];
-        if (any) smoothGroup(keyed, a, b, mesh, own, weight, [&](std::uint32_t v) { return scaleOf(mesh, cache, v); });
+        if (any) smooth(a, b);
     }
     walked = std::chrono::duration<double>(std::chrono::steady_clock::now() - walkStart).count();
     return resized;
@@ -727,12 +753,30 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     // where 2.5 were left).
     const bool mayDelayResizes = stop && !cache.resizesWaited;
     std::atomic<bool> relayoutAhead{stop && cache.resizesWaited};
+    // Whether patching `sofar` parts in (and a new layout, if `resizing` or
+    // one is ahead) would end past the stop.
+    const auto pastStop = [&](std::chrono::steady_clock::time_point stopAt, std::size_t sofar, bool resizing) {
+        const double needed = cache.walkSeconds + double(sofar) * cache.patchSecondsPerPart +
+                              (resizing || relayoutAhead.load(std::memory_order_relaxed) ? cache.relayoutSeconds : 0.0);
+        return std::chrono::steady_clock::now() +
+                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(needed)) >
+               stopAt;
+    };
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polygons, 16), [&](const tbb::blocked_range<std::size_t>& r) {
         Scratch scratch;
         std::vector<glm::dvec3> values;
         for (std::size_t p = r.begin(); p < r.end(); ++p) {
             SnapshotCache::Part& part = cache.parts[p];
             if (touched && part.valid && !(*touched)[p]) continue;
+            // Past the stop, once kLeastRemeshed went ahead, a polygon the
+            // frame touched waits with its leaves unread: on the building
+            // floor 8,700 polygons waited frame after frame, and hashing
+            // their leaves again took 5 ms of every snapshot.
+            if (stop && touched && part.valid && meshed.load(std::memory_order_relaxed) >= kLeastRemeshed &&
+                pastStop(*stop, meshed.load(std::memory_order_relaxed), false)) {
+                left.fetch_add(1, std::memory_order_relaxed);
+                continue;
+            }
             const ElementId top = hierarchy.polygonElement(static_cast<std::uint32_t>(p));
             const auto [shape, light] =
                 top == kNone ? std::pair<std::uint64_t, std::uint64_t>{0, 0}
@@ -748,14 +792,8 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
             // it waits too (one build in two at most).
             const std::size_t sofar = meshed.load(std::memory_order_relaxed);
             const bool resizes = part.valid && scratch.leaves.size() != part.leaves;
-            const double needed = cache.walkSeconds + double(sofar) * cache.patchSecondsPerPart +
-                                  ((resizes && mayDelayResizes) || relayoutAhead.load(std::memory_order_relaxed)
-                                       ? cache.relayoutSeconds
-                                       : 0.0);
             if (stop && part.valid && (sofar >= kLeastRemeshed || (resizes && mayDelayResizes)) &&
-                std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(needed)) >
-                    *stop) {
+                pastStop(*stop, sofar, resizes && mayDelayResizes)) {
                 left.fetch_add(1, std::memory_order_relaxed);
                 if (resizes) resizesWait.store(true, std::memory_order_relaxed);
                 continue;
@@ -820,7 +858,8 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
         } else if (n >= kLeastRemeshed) {
             cache.patchSecondsPerPart = 0.5 * (cache.patchSecondsPerPart + took / double(n));
         }
-        if (n >= kLeastRemeshed) cache.walkSeconds = cache.walkSeconds > 0.0 ? 0.5 * (cache.walkSeconds + walked) : walked;
+        if (n >= kLeastRemeshed && walked > 0.0)
+            cache.walkSeconds = cache.walkSeconds > 0.0 ? 0.5 * (cache.walkSeconds + walked) : walked;
         return left.load();
     }
     // Each part's place in the mesh, then the parts copied on all cores.

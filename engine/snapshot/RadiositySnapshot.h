@@ -93,6 +93,11 @@ struct SnapshotCache {
     // measured: when patching the re-meshed parts in would cost more (a frame
     // that changed much of a small scene), the mesh is joined anew.
     double assembleSeconds = 0.0;
+    // A patch finds the smoothing groups to sum again by their keys when
+    // they number fewer than this share of the keys (a binary search among
+    // the building floor's keys costs about as much as walking 256 of
+    // them), else it walks along all keys.
+    std::size_t keysPerSearch = 256;
     struct Key {  // a vertex's position and normal, quantised and packed (vertexKey)
         std::uint64_t a, b;
         auto operator<=>(const Key&) const = default;

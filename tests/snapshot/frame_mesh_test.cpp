@@ -18,6 +18,9 @@ void expectMadeFromScratch(const Engine& engine, const char* after) {
     ASSERT_EQ(kept.normals, fresh.normals) << after;
     ASSERT_EQ(kept.colors, fresh.colors) << after;
     ASSERT_EQ(kept.indices, fresh.indices) << after;
+    ASSERT_EQ(kept.uvs, fresh.uvs) << after;
+    ASSERT_EQ(kept.textureLayer, fresh.textureLayer) << after;
+    ASSERT_EQ(kept.texelScale, fresh.texelScale) << after;
 }
 
 TEST(FrameMesh, FramesKeepTheMeshMadeFromScratch) {

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <tuple>
+#include <utility>
 
 #include "hierarchy/Hierarchy.h"
 #include "snapshot/RadiositySnapshot.h"
@@ -161,8 +163,10 @@ TEST(RadiositySnapshot, CachedPartsGiveTheMeshMadeFromScratch) {
 
 // A wall of 10 x 10 unit tiles meeting edge to edge (their seams smoothed),
 // its hierarchy, and a mesh built from a cache frame after frame.
+// Textured: each tile shows a 2 x 1 texture of a light and a dark texel.
 struct TiledWall {
-    Scene scene = [] {
+    explicit TiledWall(bool textured = false) : scene(wall(textured)) {}
+    static Scene wall(bool textured) {
         using V = glm::dvec3;
         Scene s;
         const auto m = test::addMaterial(s, V(0.5), V(0.0));
@@ -171,8 +175,19 @@ struct TiledWall {
             for (int i = 0; i < 10; ++i)
                 tiles.push_back({V(i, j, 0), V(i + 1, j, 0), V(i + 1, j + 1, 0), V(i, j + 1, 0)});
         test::addQuadObject(s, "wall", m, tiles);
+        if (textured) {
+            auto texture = std::make_shared<Texture>();
+            texture->width = 2;
+            texture->height = 1;
+            texture->srgba = {230, 230, 230, 255, 60, 60, 60, 255};
+            s.materials[m].texture = 0;
+            s.materials[m].textureMean = texture->mean();
+            s.textures.push_back(std::move(texture));
+            for (Polygon& p : s.polygons) p.uv = {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)};
+        }
         return s;
-    }();
+    }
+    Scene scene;
     Hierarchy h{scene, 1e-3};
     SnapshotCache cache;
     MeshSnapshot cached;
@@ -196,6 +211,9 @@ struct TiledWall {
         ASSERT_EQ(kept.positions, fresh.positions) << after;
         ASSERT_EQ(kept.colors, fresh.colors) << after;
         ASSERT_EQ(kept.indices, fresh.indices) << after;
+        ASSERT_EQ(kept.uvs, fresh.uvs) << after;
+        ASSERT_EQ(kept.textureLayer, fresh.textureLayer) << after;
+        ASSERT_EQ(kept.texelScale, fresh.texelScale) << after;
     }
 };
 
@@ -204,28 +222,39 @@ struct TiledWall {
 // parts change size and the mesh moves to a new layout) and their children
 // removed; and a build whose stop has passed meshes kLeastRemeshed tiles or
 // a few more, keeps the others as they were, and the next build catches up.
+// Both ways of finding the seams' groups to sum again: walking along all
+// keys, and finding each by its key (keysPerSearch 0: always); and with
+// textures, whose coordinates and layers the slots' room holds too.
 TEST(RadiositySnapshot, CachedTilesAcrossResizesAndAStopGiveTheMeshMadeFromScratch) {
-    TiledWall w;
-    w.paint(1.0);
-    w.expectTheMeshMadeFromScratch("the first build");
-    for (std::uint32_t p : {11u, 12u, 55u, 98u}) w.h.subdivide(w.h.polygonElement(p));
-    w.h.subdivide(w.h[w.h.polygonElement(12)].children[1]);
-    w.paint(1.5);
-    w.expectTheMeshMadeFromScratch("subdivisions");
-    w.h.removeChildren(w.h.polygonElement(12));
-    w.paint(1.7);
-    w.expectTheMeshMadeFromScratch("children removed");
+    for (const auto& [keysPerSearch, textured] :
+         {std::pair{std::size_t(256), false}, std::pair{std::size_t(0), false}, std::pair{std::size_t(0), true}}) {
+        SCOPED_TRACE(keysPerSearch);
+        SCOPED_TRACE(textured);
+        TiledWall w(textured);
+        ASSERT_EQ(makeRadiositySnapshot(w.scene, w.h).uvs.empty(), !textured);
+        w.cache.keysPerSearch = keysPerSearch;
+        w.paint(1.0);
+        w.expectTheMeshMadeFromScratch("the first build");
+        w.cache.assembleSeconds = 3600.0;  // as if joining all parts anew took an hour: builds patch
+        for (std::uint32_t p : {11u, 12u, 55u, 98u}) w.h.subdivide(w.h.polygonElement(p));
+        w.h.subdivide(w.h[w.h.polygonElement(12)].children[1]);
+        w.paint(1.5);
+        w.expectTheMeshMadeFromScratch("subdivisions");
+        w.h.removeChildren(w.h.polygonElement(12));
+        w.paint(1.7);
+        w.expectTheMeshMadeFromScratch("children removed");
 
-    w.paint(2.0);
-    const MeshSnapshot before = w.cached;
-    const std::size_t left = w.build(std::chrono::steady_clock::now() - std::chrono::seconds(1));
-    EXPECT_GT(left, 0u);
-    EXPECT_LE(left, 100u - kLeastRemeshed);
-    // The tiles left keep their colours: as many vertices as before are unchanged.
-    std::size_t same = 0;
-    for (std::size_t v = 0; v < w.cached.colors.size(); ++v) same += w.cached.colors[v] == before.colors[v];
-    EXPECT_GT(same, 0u);
-    w.expectTheMeshMadeFromScratch("the next build");
+        w.paint(2.0);
+        const MeshSnapshot before = w.cached;
+        const std::size_t left = w.build(std::chrono::steady_clock::now() - std::chrono::seconds(1));
+        EXPECT_GT(left, 0u);
+        EXPECT_LE(left, 100u - kLeastRemeshed);
+        // The tiles left keep their colours: as many vertices as before are unchanged.
+        std::size_t same = 0;
+        for (std::size_t v = 0; v < w.cached.colors.size(); ++v) same += w.cached.colors[v] == before.colors[v];
+        EXPECT_GT(same, 0u);
+        w.expectTheMeshMadeFromScratch("the next build");
+    }
 }
 
 // A tile that outgrows its slot moves the mesh to a new layout and gets a
