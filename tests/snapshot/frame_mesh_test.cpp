@@ -7,20 +7,14 @@
 
 #include "radiosity/Engine.h"
 #include "support/Motion.h"
+#include "support/SameMesh.h"
 #include "support/TestScenes.h"
 
 namespace rad {
 namespace {
 
 void expectMadeFromScratch(const Engine& engine, const char* after) {
-    const MeshSnapshot kept = compactMesh(engine.snapshot()), fresh = engine.snapshotFromScratch();
-    ASSERT_EQ(kept.positions, fresh.positions) << after;
-    ASSERT_EQ(kept.normals, fresh.normals) << after;
-    ASSERT_EQ(kept.colors, fresh.colors) << after;
-    ASSERT_EQ(kept.indices, fresh.indices) << after;
-    ASSERT_EQ(kept.uvs, fresh.uvs) << after;
-    ASSERT_EQ(kept.textureLayer, fresh.textureLayer) << after;
-    ASSERT_EQ(kept.texelScale, fresh.texelScale) << after;
+    test::expectSameMesh(engine.snapshot(), engine.snapshotFromScratch(), after);
 }
 
 TEST(FrameMesh, FramesKeepTheMeshMadeFromScratch) {

@@ -12,6 +12,7 @@
 #include "snapshot/RadiositySnapshot.h"
 #include "radiosity/Engine.h"
 #include "support/Motion.h"
+#include "support/SameMesh.h"
 #include "support/TestScenes.h"
 
 namespace rad {
@@ -128,12 +129,7 @@ TEST(RadiositySnapshot, CachedPartsGiveTheMeshMadeFromScratch) {
     MeshSnapshot cached;
     const auto expectSame = [&](const char* after) {
         makeRadiositySnapshot(s, h, cached, cache);
-        const MeshSnapshot fresh = makeRadiositySnapshot(s, h), kept = compactMesh(cached);
-        ASSERT_EQ(compactMesh(fresh).positions.size(), fresh.positions.size()) << "a mesh from scratch has no room to grow";
-        ASSERT_EQ(kept.positions, fresh.positions) << after;
-        ASSERT_EQ(kept.normals, fresh.normals) << after;
-        ASSERT_EQ(kept.colors, fresh.colors) << after;
-        ASSERT_EQ(kept.indices, fresh.indices) << after;
+        test::expectSameMesh(cached, makeRadiositySnapshot(s, h), after);
     };
     expectSame("the first build");
     const ElementId wall = h.polygonElement(0);
@@ -207,13 +203,7 @@ struct TiledWall {
     // A build without a stop leaves nothing, and gives the mesh made from scratch.
     void expectTheMeshMadeFromScratch(const char* after) {
         EXPECT_EQ(build(), 0u) << after;
-        const MeshSnapshot fresh = makeRadiositySnapshot(scene, h), kept = compactMesh(cached);
-        ASSERT_EQ(kept.positions, fresh.positions) << after;
-        ASSERT_EQ(kept.colors, fresh.colors) << after;
-        ASSERT_EQ(kept.indices, fresh.indices) << after;
-        ASSERT_EQ(kept.uvs, fresh.uvs) << after;
-        ASSERT_EQ(kept.textureLayer, fresh.textureLayer) << after;
-        ASSERT_EQ(kept.texelScale, fresh.texelScale) << after;
+        test::expectSameMesh(cached, makeRadiositySnapshot(scene, h), after);
     }
 };
 
