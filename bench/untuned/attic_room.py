@@ -7,17 +7,15 @@ degrees, a round table (a 16-sided prism) and a chest under the low side.
     python3 bench/untuned/attic_room.py OUT.gltf [--fix]"""
 import json, math, sys
 sys.path.insert(0, __import__('os').path.dirname(__import__('os').path.abspath(__file__)))
-from gltf_writer import add_mesh, box, buffers, meshes, accessors, views
+from gltf_writer import material, add_mesh, box, buffers, meshes, accessors, views
 materials = [
- {"name": "plaster", "pbrMetallicRoughness": {"baseColorFactor": [0.78, 0.76, 0.72, 1]}},
- {"name": "wood", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.34, 0.2, 1]}},
- {"name": "sky", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "emissiveFactor": [0.85, 0.9, 1],
-  "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 12}}},
- {"name": "globe", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1]}, "emissiveFactor": [1, 0.8, 0.55],
-  "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 25}}},
- {"name": "linen", "pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.72, 0.75, 1]}},
- {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.4, 0.3, 0.22, 1]}},
- {"name": "blue", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.3, 0.55, 1]}},
+ material("plaster", [0.78, 0.76, 0.72]),
+ material("wood", [0.5, 0.34, 0.2]),
+ material("sky", [0, 0, 0], glow=[0.85, 0.9, 1], strength=12),
+ material("globe", [0.8, 0.8, 0.8], glow=[1, 0.8, 0.55], strength=25),
+ material("linen", [0.7, 0.72, 0.75]),
+ material("floor", [0.4, 0.3, 0.22]),
+ material("blue", [0.2, 0.3, 0.55]),
 ]
 W, D, Hlow, Hridge = 6.0, 4.0, 1.0, 3.2   # x: 0..W, z: 0..D, ridge along x at z = D/2
 def quad(a, b, c, d): return [a, b, c, d]

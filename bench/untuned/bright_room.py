@@ -8,18 +8,16 @@ on them, a rug 5 mm above the floor.
 --scale S multiplies every coordinate (a model in centimetres: S = 100)."""
 import json, sys
 sys.path.insert(0, __import__('os').path.dirname(__import__('os').path.abspath(__file__)))
-from gltf_writer import add_mesh, box, buffers, meshes, accessors, views
+from gltf_writer import material, add_mesh, box, buffers, meshes, accessors, views
 S = float(sys.argv[sys.argv.index('--scale') + 1]) if '--scale' in sys.argv else 1.0
 materials = [
- {"name": "white", "pbrMetallicRoughness": {"baseColorFactor": [0.85, 0.85, 0.83, 1]}},
- {"name": "window", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "emissiveFactor": [0.9, 0.95, 1],
-  "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 20}}},
- {"name": "lamp", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1]}, "emissiveFactor": [1, 0.85, 0.6],
-  "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 30}}},
- {"name": "fabric", "pbrMetallicRoughness": {"baseColorFactor": [0.25, 0.3, 0.5, 1]}},
- {"name": "wood", "pbrMetallicRoughness": {"baseColorFactor": [0.55, 0.38, 0.22, 1]}},
- {"name": "rug", "pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.2, 0.15, 1]}},
- {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.45, 0.4, 0.35, 1]}},
+ material("white", [0.85, 0.85, 0.83]),
+ material("window", [0, 0, 0], glow=[0.9, 0.95, 1], strength=20),
+ material("lamp", [0.8, 0.8, 0.8], glow=[1, 0.85, 0.6], strength=30),
+ material("fabric", [0.25, 0.3, 0.5]),
+ material("wood", [0.55, 0.38, 0.22]),
+ material("rug", [0.6, 0.2, 0.15]),
+ material("floor", [0.45, 0.4, 0.35]),
 ]
 def sc(quads): return [[tuple(S * c for c in v) for v in q] for q in quads]
 W, H, D = 5.0, 2.7, 4.0

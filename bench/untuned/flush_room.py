@@ -9,16 +9,15 @@ the ceiling (G = D unless given); --flipped turns the lamp to face the ceiling (
 the light trapped between the two: the solve warns `trapped_light`)."""
 import json, sys
 sys.path.insert(0, __import__('os').path.dirname(__import__('os').path.abspath(__file__)))
-from gltf_writer import add_mesh, box, buffers, meshes, accessors, views
+from gltf_writer import material, add_mesh, box, buffers, meshes, accessors, views
 off = float(sys.argv[sys.argv.index('--off') + 1]) if '--off' in sys.argv else 0.0
 gap = float(sys.argv[sys.argv.index('--lamp-gap') + 1]) if '--lamp-gap' in sys.argv else off
 materials = [
- {"name": "plaster", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.78, 0.74, 1]}},
- {"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.15, 0.1, 1]}},
- {"name": "blue", "pbrMetallicRoughness": {"baseColorFactor": [0.15, 0.25, 0.7, 1]}},
- {"name": "lamp", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "emissiveFactor": [1, 1, 1],
-  "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8}}},
- {"name": "green", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.6, 0.25, 1]}},
+ material("plaster", [0.8, 0.78, 0.74]),
+ material("red", [0.7, 0.15, 0.1]),
+ material("blue", [0.15, 0.25, 0.7]),
+ material("lamp", [0, 0, 0], glow=[1, 1, 1], strength=8),
+ material("green", [0.2, 0.6, 0.25]),
 ]
 W, H, D = 4.0, 2.6, 3.5
 walls = box(0, 0, 0, W, H, D, inward=True)

@@ -32,6 +32,13 @@ def box(x0,y0,z0,x1,y1,z1,inward=False):
        [(x0,y0,z0),(x1,y0,z0),(x1,y0,z1),(x0,y0,z1)],[(x0,y1,z0),(x0,y1,z1),(x1,y1,z1),(x1,y1,z0)],
        [(x0,y0,z0),(x0,y1,z0),(x1,y1,z0),(x1,y0,z0)],[(x0,y0,z1),(x1,y0,z1),(x1,y1,z1),(x0,y1,z1)]]
     return [list(reversed(q)) for q in f] if inward else f
+def material(name, colour, glow=None, strength=None):
+    """A glTF material of base colour `colour` (RGB); glowing `glow` (RGB) times `strength` when given."""
+    m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": list(colour) + [1]}}
+    if glow is not None:
+        m["emissiveFactor"] = list(glow)
+        m["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}
+    return m
 def buffers():
     """The glTF buffers array: the one buffer, embedded."""
     return [{"byteLength":len(blob),"uri":"data:application/octet-stream;base64,"+base64.b64encode(bytes(blob)).decode()}]

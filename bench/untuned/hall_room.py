@@ -7,12 +7,12 @@ the wall.
 """
 import json, sys
 sys.path.insert(0, __import__('os').path.dirname(__import__('os').path.abspath(__file__)))
-from gltf_writer import accessors, add_mesh, box, buffers, meshes, views
-mats=[{"name":"plaster","pbrMetallicRoughness":{"baseColorFactor":[0.85,0.83,0.8,1]}},
- {"name":"steel","pbrMetallicRoughness":{"baseColorFactor":[0.4,0.42,0.45,1]}},
- {"name":"floor","pbrMetallicRoughness":{"baseColorFactor":[0.3,0.25,0.2,1]}},
- {"name":"lamp","pbrMetallicRoughness":{"baseColorFactor":[0,0,0,1]},"emissiveFactor":[1,0.95,0.85],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":8}}},
- {"name":"green","pbrMetallicRoughness":{"baseColorFactor":[0.2,0.6,0.3,1]}}]
+from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, views
+mats=[material("plaster", [0.85, 0.83, 0.8]),
+ material("steel", [0.4, 0.42, 0.45]),
+ material("floor", [0.3, 0.25, 0.2]),
+ material("lamp", [0, 0, 0], glow=[1, 0.95, 0.85], strength=8),
+ material("green", [0.2, 0.6, 0.3])]
 nodes=[]
 def obj(name, quads, m, **kw):
     n={"name":name,"mesh":add_mesh(name,quads,m)}; n.update(kw); nodes.append(n)

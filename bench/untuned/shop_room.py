@@ -7,11 +7,11 @@ given twice, a dynamic trolley.
 """
 import json, sys
 sys.path.insert(0, __import__('os').path.dirname(__import__('os').path.abspath(__file__)))
-from gltf_writer import accessors, add_mesh, box, buffers, meshes, views
-mats=[{"name":"plaster","pbrMetallicRoughness":{"baseColorFactor":[0.75,0.7,0.65,1]}},
- {"name":"metal","pbrMetallicRoughness":{"baseColorFactor":[0.4,0.45,0.5,1]}},
- {"name":"crate","pbrMetallicRoughness":{"baseColorFactor":[0.6,0.5,0.3,1]}},
- {"name":"lamp","pbrMetallicRoughness":{"baseColorFactor":[0,0,0,1]},"emissiveFactor":[1,0.95,0.85],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":8}}}]
+from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, views
+mats=[material("plaster", [0.75, 0.7, 0.65]),
+ material("metal", [0.4, 0.45, 0.5]),
+ material("crate", [0.6, 0.5, 0.3]),
+ material("lamp", [0, 0, 0], glow=[1, 0.95, 0.85], strength=8)]
 nodes=[]
 def obj(name, quads, m, **kw):
     n={"name":name,"mesh":add_mesh(name,quads,m)}; n.update(kw); nodes.append(n)

@@ -7,14 +7,14 @@ unlit closet.
 """
 import json, sys
 sys.path.insert(0, __import__('os').path.dirname(__import__('os').path.abspath(__file__)))
-from gltf_writer import accessors, add_mesh, box, buffers, meshes, views
+from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, views
 materials=[
- {"name":"wall","pbrMetallicRoughness":{"baseColorFactor":[0.75,0.75,0.72,1]}},
- {"name":"wood","pbrMetallicRoughness":{"baseColorFactor":[0.55,0.4,0.25,1]}},
- {"name":"panel","pbrMetallicRoughness":{"baseColorFactor":[0.8,0.8,0.8,1]},"emissiveFactor":[1,1,1],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":8}}},
- {"name":"slat","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.85,1]}},
- {"name":"plate","pbrMetallicRoughness":{"baseColorFactor":[0.85,0.85,0.9,1]}},
- {"name":"fabric","pbrMetallicRoughness":{"baseColorFactor":[0.3,0.35,0.6,1]}},
+ material("wall", [0.75, 0.75, 0.72]),
+ material("wood", [0.55, 0.4, 0.25]),
+ material("panel", [0.8, 0.8, 0.8], glow=[1, 1, 1], strength=8),
+ material("slat", [0.9, 0.9, 0.85]),
+ material("plate", [0.85, 0.85, 0.9]),
+ material("fabric", [0.3, 0.35, 0.6]),
 ]
 W,H,D=5.0,2.8,4.0
 # room with a doorway in the wall x=W into a closet (W..W+1.2, 0..H, 1.0..2.5)
