@@ -61,9 +61,7 @@ std::size_t splitAtContacts(std::vector<std::vector<Polygon>>& polygons, std::sp
         const Piece whole = pieceOf(p);
         // Emitters close in front, facing it: the box reaches out along the
         // normal as far as the largest gap kTrappedGapShare allows here.
-        Aabb ahead = around;
-        ahead.hi += glm::max(normal, glm::dvec3(0.0)) * (kTrappedGapShare * glm::length(box.extent()));
-        ahead.lo += glm::min(normal, glm::dvec3(0.0)) * (kTrappedGapShare * glm::length(box.extent()));
+        const Aabb ahead = reachingAhead(around, normal, kTrappedGapShare * glm::length(box.extent()));
         for (std::uint32_t q : grid.near(ahead)) {
             if (refs[q].object == refs[r].object || !overlaps(ahead, boxes[q], 0.0)) continue;
             const Polygon& other = polygons[refs[q].object][refs[q].index];

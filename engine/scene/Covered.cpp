@@ -18,11 +18,6 @@ struct Flat {
     std::size_t order;  // in the file: objects, then polygons
 };
 
-bool boxesMeet(const Aabb& a, const Aabb& b, double tolerance) {
-    return glm::all(glm::lessThanEqual(a.lo, b.hi + tolerance)) &&
-           glm::all(glm::lessThanEqual(b.lo, a.hi + tolerance));
-}
-
 // Whether `cover` lies in the plane of `under` and faces the same way.
 bool coincident(const Polygon& under, const Flat& u, const Polygon& cover, const Flat& c,
                 double tolerance) {
@@ -86,7 +81,7 @@ CoveredParts cutCoveredParts(std::vector<std::vector<Polygon>>& polygons,
             // Only a smaller polygon covers (of two alike, the earlier).
             if (s == u.order || c.area > u.area || (c.area == u.area && c.order > u.order))
                 continue;
-            if (!boxesMeet(u.box, c.box, tolerance)) continue;
+            if (!overlaps(u.box, c.box, -tolerance)) continue;  // flat boxes: meeting within the tolerance
             const Polygon& cover = polygons[c.object][c.index];
             if (!coincident(under, u, cover, c, tolerance)) continue;
             next.clear();

@@ -1218,11 +1218,13 @@ class Importer {
                    std::tie(b.first.x, b.first.y, b.first.z, b.second);
         });
         lightAt.erase(std::unique(lightAt.begin(), lightAt.end()), lightAt.end());
+        std::vector<char> emits(materials_.size(), 0);  // per material
+        for (std::size_t m = 0; m < materials_.size(); ++m)
+            emits[m] = glm::any(glm::greaterThan(materials_[m].emission, glm::dvec3(0.0)));
         std::vector<std::pair<glm::dvec3, std::size_t>> emitterCentres;
         for (std::size_t i = 0; i < pending_.size(); ++i)
             for (const WorldTriangle& t : pending_[i].triangles)
-                if (glm::any(glm::greaterThan(materials_[t.material].emission, glm::dvec3(0.0))))
-                    emitterCentres.emplace_back((t.v[0] + t.v[1] + t.v[2]) / 3.0, i);
+                if (emits[t.material]) emitterCentres.emplace_back((t.v[0] + t.v[1] + t.v[2]) / 3.0, i);
         std::size_t frontOnly = 0;
         std::string closedWhere;
         int closedListed = 0;
@@ -1321,9 +1323,6 @@ class Importer {
         double area = 0.0;
         for (const std::vector<Polygon>& object : polygons)
             for (const Polygon& p : object) area += p.area();
-        std::vector<char> emits(materials_.size(), 0);
-        for (std::size_t m = 0; m < materials_.size(); ++m)
-            emits[m] = glm::any(glm::greaterThan(materials_[m].emission, glm::dvec3(0.0)));
         const std::size_t splitAtContact =
             splitAtContacts(polygons, cut, 2.0 * std::sqrt(kDefaultMinAreaShare * area), emits);
         notes_.contactPolygons += splitAtContact;

@@ -166,6 +166,12 @@ bool overlaps(const Aabb& a, const Aabb& b, double tolerance) {
            glm::all(glm::lessThan(b.lo, a.hi - tolerance));
 }
 
+Aabb reachingAhead(Aabb box, const glm::dvec3& normal, double reach) {
+    box.hi += glm::max(normal, glm::dvec3(0.0)) * reach;
+    box.lo += glm::min(normal, glm::dvec3(0.0)) * reach;
+    return box;
+}
+
 BoxGrid::BoxGrid(std::span<const Aabb> boxes) : seen_(boxes.size(), 0) {
     for (const Aabb& b : boxes) bounds_.extend(b);
     const int n = std::clamp(static_cast<int>(std::cbrt(double(boxes.size()))) + 1, 1, 32);

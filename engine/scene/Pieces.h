@@ -68,6 +68,9 @@ void cutAlong(std::vector<Piece>& pieces, const glm::dvec3& normal, const glm::d
 void appendPieces(const Polygon& polygon, std::span<const Piece> pieces, std::vector<Polygon>& out);
 
 bool overlaps(const Aabb& a, const Aabb& b, double tolerance);
+// `box` reaching out `reach` further along `normal` (where a surface facing
+// it may lie).
+Aabb reachingAhead(Aabb box, const glm::dvec3& normal, double reach);
 
 // Which boxes may overlap a box: a uniform grid over them, each box listed
 // in the cells it overlaps.

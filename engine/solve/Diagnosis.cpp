@@ -168,11 +168,7 @@ std::vector<Warning> trappedLightWarnings(const Scene& scene) {
         power[lamp.object] += p;
         total += p;
         const glm::dvec3 n = lamp.normal(), centre = lamp.centroid();
-        const double reach = kTrappedGapShare * std::sqrt(area);
-        Aabb ahead = boxes[e];
-        ahead.hi += glm::max(n, glm::dvec3(0.0)) * reach;
-        ahead.lo += glm::min(n, glm::dvec3(0.0)) * reach;
-        for (std::uint32_t q : grid.near(ahead)) {
+        for (std::uint32_t q : grid.near(reachingAhead(boxes[e], n, kTrappedGapShare * std::sqrt(area)))) {
             const Polygon& other = scene.polygons[q];
             if (other.object == lamp.object) continue;
             const double gap = trappingGap(lamp, other);
