@@ -253,26 +253,44 @@ Key vertexKey(const MeshSnapshot& mesh, std::uint32_t i, const glm::dvec3& origi
 // of a checkered floor that meet at a seam share their light, not their
 // colour. Untextured, the same with the polygon's own reflectance
 // (SnapshotCache::Part::perLight).
+//
+// A seam where the light steps (one side's light more than kSeamStep times
+// the other's) is not smoothed: each vertex keeps its own value. There the
+// seam is an edge of the light, not a place the leaves happen to end: the
+// floor of a doorway's reveal, lit from the corridor, meets the dark
+// room's floor under a closed door, and the shared value drew a bright
+// band along the door's foot into the dark room.
+inline constexpr double kSeamStep = 4.0;
+
 template <class Own, class Weight, class Scale>
 void smoothGroup(const std::vector<std::pair<Key, std::uint32_t>>& keyed, std::size_t a, std::size_t b,
                  MeshSnapshot& mesh, const Own& own, const Weight& weight, const Scale& scale) {
     // Per channel; a vertex that reflects nothing in a channel (texelScale
     // 0) says nothing about the light there.
     glm::dvec3 sum(0.0), w(0.0);
+    double darkest = std::numeric_limits<double>::infinity(), brightest = 0.0;
     for (std::size_t k = a; k < b; ++k) {
         const std::uint32_t i = keyed[k].second;
         const glm::dvec3 s = scale(i);
+        double light = 0.0;
+        int channels = 0;
         for (int c = 0; c < 3; ++c)
             if (s[c] > 0.0) {
                 sum[c] += weight(i) * own(i)[c] * s[c];
                 w[c] += weight(i);
+                light += own(i)[c] * s[c];
+                ++channels;
             }
+        if (channels == 0) continue;
+        darkest = std::min(darkest, light / channels);
+        brightest = std::max(brightest, light / channels);
     }
+    const bool step = brightest > kSeamStep * darkest;
     for (std::size_t k = a; k < b; ++k) {
         const std::uint32_t i = keyed[k].second;
         glm::vec3 value = own(i);
         const glm::dvec3 s = scale(i);
-        if (b - a > 1)
+        if (b - a > 1 && !step)
             for (int c = 0; c < 3; ++c)
                 if (s[c] > 0.0 && w[c] > 0.0) value[c] = static_cast<float>(sum[c] / w[c] / s[c]);
         mesh.colors[i] = value;

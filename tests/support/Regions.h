@@ -29,6 +29,31 @@ inline double regionLuminance(const Engine& engine, const std::string& prefix) {
     return area > 0.0 ? sum / area : 0.0;
 }
 
+// The area-weighted mean luminance of the mesh the viewer draws (smoothed
+// vertex colours, interpolated over each triangle), over the triangles whose
+// centroid `inside` accepts: a region as it is seen, the surfaces a door
+// hides from it left out.
+template <class Inside>
+double drawnLuminance(const Engine& engine, const Inside& inside) {
+    const MeshSnapshot m = compactMesh(engine.snapshot());
+    double sum = 0.0, area = 0.0;
+    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        glm::dvec3 q[3];
+        double l = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t i = m.indices[t + k];
+            q[k] = glm::dvec3(m.positions[i]) + m.origin;
+            l += luminance(glm::dvec3(m.colors[i])) / 3.0;
+        }
+        const double a = 0.5 * glm::length(glm::cross(q[1] - q[0], q[2] - q[0]));
+        if (a > 0.0 && inside((q[0] + q[1] + q[2]) / 3.0)) {
+            sum += a * l;
+            area += a;
+        }
+    }
+    return area > 0.0 ? sum / area : 0.0;
+}
+
 // Expects each object whose name starts with `prefix` under `fraction` of
 // the luminance of the object `lit` (which must be lit).
 inline void expectDarkBeside(const Engine& engine, const std::string& prefix,
