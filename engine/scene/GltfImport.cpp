@@ -428,9 +428,13 @@ class Importer {
     void walkScene() {
         std::vector<int> roots;
         if (!model_.scenes.empty()) {
+            // No "scene" (-1): the first. One that names no scene is an
+            // error, not the first one silently.
             int sceneIndex = model_.defaultScene;
-            if (sceneIndex < 0 || sceneIndex >= static_cast<int>(model_.scenes.size()))
-                sceneIndex = 0;
+            if (sceneIndex >= static_cast<int>(model_.scenes.size()))
+                fail("scene", "refers to scene " + std::to_string(sceneIndex) + " which does not exist (the file has " +
+                                  std::to_string(model_.scenes.size()) + ")");
+            if (sceneIndex < 0) sceneIndex = 0;
             if (model_.scenes.size() > 1)
                 note("file has " + std::to_string(model_.scenes.size()) +
                      " scenes; imported scene " + std::to_string(sceneIndex));
@@ -467,6 +471,12 @@ class Importer {
             // glTF matrices are column-major, as glm's are.
             for (int c = 0; c < 4; ++c)
                 for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[4 * c + r];
+            // glTF's node matrices are affine (translation, rotation and
+            // scale): a last row other than 0 0 0 1 is a projection, which
+            // no rigid scene has.
+            const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-6; };
+            if (!near(m[0][3], 0.0) || !near(m[1][3], 0.0) || !near(m[2][3], 0.0) || !near(m[3][3], 1.0))
+                fail(item, "matrix is not affine: its last row must be 0 0 0 1");
             return m;
         }
         if (!allFinite(node.translation) || !allFinite(node.rotation) || !allFinite(node.scale))

@@ -1194,6 +1194,37 @@ TEST(GltfImportErrors, TransformOverflowsAcrossParents) {
     expectOneLineError(importError(file), file, "node 'Huge'");
 }
 
+// A node matrix with a projective last row (here a zero corner) is not a
+// transform of a rigid scene: named, not imported as a squashed mesh.
+TEST(GltfImportErrors, NodeMatrixThatIsNotAffine) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    g.addNode("\"name\":\"Squashed\",\"mesh\":0,\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,0]");
+    const fs::path file = g.writeEmbedded(dir);
+    const std::string message = importError(file);
+    expectOneLineError(message, file, "node 'Squashed'");
+    EXPECT_NE(message.find("not affine"), std::string::npos) << message;
+}
+
+// "scene" naming a scene the file does not have: an error, not the first
+// scene imported in its place.
+TEST(GltfImportErrors, DefaultSceneThatDoesNotExist) {
+    TempDir dir;
+    GltfBuilder g;
+    addRectMesh(g, "Rect", g.addGrey("Grey"));
+    g.addNode("\"name\":\"Rect\",\"mesh\":0");
+    const fs::path file = g.writeEmbedded(dir);
+    std::string text = test::readFile(file.string());
+    const std::size_t at = text.find("\"scene\":0");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 9, "\"scene\":3");
+    writeFile(file, text);
+    const std::string message = importError(file);
+    expectOneLineError(message, file, "scene");
+    EXPECT_NE(message.find("scene 3 which does not exist"), std::string::npos) << message;
+}
+
 TEST(GltfImportErrors, InfiniteFactor) {
     TempDir dir;
     GltfBuilder g;
