@@ -107,7 +107,7 @@ struct SnapshotCache {
     double keyCell = 0.0;
     // Per object, its box while its transform is the one kept beside it:
     // the keys' grid follows the scene's box, which a frame would otherwise
-    // sum again over every polygon (1.3 ms of each frame on the building
+    // sum again over every polygon (1 ms of each frame on the building
     // floor, to move a chair).
     std::vector<Aabb> objectBox;
     std::vector<glm::dmat4> objectTransform;
