@@ -79,8 +79,8 @@ PanelActions drawPanels(const PanelState& s, PanelControls& c) {
     ImGui::Text("polygons %zu   elements %zu", s.polygons, s.elements);
     ImGui::Text("links %zu   p-links %zu", s.links, s.passiveLinks);
     ImGui::Text("memory %s   solve %.2f s", bytes(s.memoryBytes).c_str(), s.solveSeconds);
-    ImGui::Text("moves %zu   last %.1f ms   est. error %.2f%%   updated %zu   pending %zu", s.moves, s.lastUpdateMs,
-                100.0 * s.estimatedError, s.linksUpdated, s.pending);
+    ImGui::Text("moves %zu   last %.1f ms (+%.1f to show)   est. error %.2f%%   updated %zu   pending %zu", s.moves,
+                s.lastUpdateMs, s.publishMs, 100.0 * s.estimatedError, s.linksUpdated, s.pending);
 
     // Update times against the target frame time.
     const float target = 1000.0f / std::max(c.targetFps, 1.0f);

@@ -31,6 +31,7 @@ struct PanelState {
     bool budgetUnlimited = false;
     std::size_t moves = 0, pending = 0, linksUpdated = 0;
     double lastUpdateMs = 0.0;
+    double publishMs = 0.0;  // handing a frame's picture to the window, after its update
     double estimatedError = 0.0;  // FrameStats::estimatedError of the last frame
     // The modified-link overlay: links recorded by the last update, and drawn.
     std::size_t overlayLinks = 0, overlayLinksShown = 0;

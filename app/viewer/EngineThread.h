@@ -81,6 +81,12 @@ struct ViewerSnapshot {
     std::vector<std::uint32_t> selection;
     std::string selectionNote;  // e.g. why the selection cannot move
     std::vector<UpdateSample> updateTimes;  // moves of the last seconds, oldest first
+    // What the engine thread's publications with a picture take (copying
+    // the lit mesh and the objects' boxes for the window; smoothed, a dearer
+    // one at once), and the deadline its frames get: the target frame time
+    // less that, at least half of it (0 without a target frame rate).
+    double publishSeconds = 0.0;
+    double frameSeconds = 0.0;
 };
 
 // Commands.

@@ -390,6 +390,7 @@ int runViewer(const ViewerOptions& options) {
             ps.pending = snap->frame.pending + snap->frame.stale + snap->frame.unsent;
             ps.linksUpdated = snap->frame.linksUpdated;
             ps.lastUpdateMs = snap->frame.totalSeconds * 1e3;
+            ps.publishMs = snap->publishSeconds * 1e3;
             ps.estimatedError = snap->frame.estimatedError;
             if (snap->mesh) {
                 ps.overlayLinks = snap->mesh->modifiedLinks;
