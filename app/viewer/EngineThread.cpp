@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
-#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -51,24 +50,7 @@ struct EngineThread::Worker {
     // objects' boxes for the window): a dearer one counts at once, else
     // smoothed by halves.
     double publishSeconds = 0.0;
-    // Each object's box while its transform stays, for the scene it was
-    // measured in: a picture lists every object's box, and measuring them
-    // all went over every polygon (1 ms a picture on the building floor).
-    const Scene* boxesOf = nullptr;
-    std::vector<Aabb> boxes;
-    std::vector<glm::dmat4> boxedAt;
-    const Aabb& boundsOf(const Scene& s, std::uint32_t o) {
-        if (boxesOf != &s || boxes.size() != s.objects.size()) {
-            boxesOf = &s;
-            boxes.assign(s.objects.size(), Aabb{});
-            boxedAt.assign(s.objects.size(), glm::dmat4(std::numeric_limits<double>::quiet_NaN()));  // equals nothing
-        }
-        if (boxedAt[o] != s.objects[o].worldFromLocal) {
-            boxes[o] = s.objectBounds(o);
-            boxedAt[o] = s.objects[o].worldFromLocal;
-        }
-        return boxes[o];
-    }
+    ObjectBoxes boxes;  // the boxes a picture lists, measured again only for what moved
     std::uint64_t moves = 0;
     std::optional<std::uint64_t> caughtUpLogged;  // `moves` at the last "caught up" line
     std::uint64_t version = 0;
@@ -207,7 +189,7 @@ void EngineThread::run() {
         const Scene& scene = w.engine ? w.engine->scene() : w.original;
         for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
             const Object& object = scene.objects[o];
-            ObjectInfo info{object.name, object.polygonCount > 0, object.worldFromLocal, w.boundsOf(scene, o)};
+            ObjectInfo info{object.name, object.polygonCount > 0, object.worldFromLocal, w.boxes.of(scene, o)};
             if (object.polygonCount > 0) {
                 const Material& m = scene.materials[scene.polygons[object.firstPolygon].material];
                 info.emission = m.emission;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace rad {
@@ -177,6 +178,25 @@ bool Scene::hasEmitter() const {
         if (e.x > 0.0 || e.y > 0.0 || e.z > 0.0) return true;
     }
     return false;
+}
+
+const Aabb& ObjectBoxes::of(const Scene& scene, std::uint32_t object) {
+    if (scene_ != &scene || boxes_.size() != scene.objects.size()) {
+        scene_ = &scene;
+        boxes_.assign(scene.objects.size(), Aabb{});
+        at_.assign(scene.objects.size(), glm::dmat4(std::numeric_limits<double>::quiet_NaN()));  // equals nothing
+    }
+    if (at_[object] != scene.objects[object].worldFromLocal) {
+        boxes_[object] = scene.objectBounds(object);
+        at_[object] = scene.objects[object].worldFromLocal;
+    }
+    return boxes_[object];
+}
+
+Aabb ObjectBoxes::all(const Scene& scene) {
+    Aabb box;
+    for (std::uint32_t o = 0; o < scene.objects.size(); ++o) box.extend(of(scene, o));
+    return box;
 }
 
 }  // namespace rad

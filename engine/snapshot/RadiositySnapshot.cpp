@@ -302,30 +302,10 @@ glm::dvec3 scaleOf(const MeshSnapshot& mesh, const SnapshotCache& cache, std::ui
     return glm::dvec3(mesh.texelScale.empty() ? cache.parts[cache.partOfVertex[i]].perLight : mesh.texelScale[i]);
 }
 
-// Scene::bounds(), from the objects' boxes kept in the cache: only an
-// object whose transform changed (a move rewrites its polygons and its
-// transform together) is measured again.
-Aabb sceneBox(const Scene& scene, SnapshotCache& cache) {
-    const std::size_t n = scene.objects.size();
-    if (cache.objectBox.size() != n) {
-        cache.objectBox.assign(n, Aabb{});
-        cache.objectTransform.assign(n, glm::dmat4(std::numeric_limits<double>::quiet_NaN()));  // equals nothing
-    }
-    Aabb box;
-    for (std::uint32_t o = 0; o < n; ++o) {
-        if (cache.objectTransform[o] != scene.objects[o].worldFromLocal) {
-            cache.objectBox[o] = scene.objectBounds(o);
-            cache.objectTransform[o] = scene.objects[o].worldFromLocal;
-        }
-        box.extend(cache.objectBox[o]);
-    }
-    return box;
-}
-
 // Needs cache.partOfVertex for the mesh (numberVertices).
 void smoothAcrossPolygons(const Scene& scene, MeshSnapshot& mesh, const std::vector<double>& weights,
                           const std::vector<std::uint32_t>& outline, SnapshotCache& cache) {
-    const Aabb box = sceneBox(scene, cache);
+    const Aabb box = cache.objectBoxes.all(scene);
     cache.keyOrigin = box.lo;
     cache.keyCell = keyCellOf(box);
     const std::size_t n = outline.size();
@@ -866,7 +846,7 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     // Parts re-meshed to the sizes they had: written in place.
     // The smoothing keys are quantised in the scene's box: a box that
     // changed (an object moved out of it) changes every key.
-    const Aabb box = sceneBox(scene, cache);
+    const Aabb box = cache.objectBoxes.all(scene);
     const bool same = cache.assembled && mesh.positions.size() == cache.vertices &&
                       mesh.indices.size() == cache.indices && mesh.linePositions.empty() &&
                       cache.vertexAt.size() == polygons + 1 && box.lo == cache.keyOrigin &&

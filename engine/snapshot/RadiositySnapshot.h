@@ -105,12 +105,9 @@ struct SnapshotCache {
     std::vector<std::pair<Key, std::uint32_t>> keyed;  // sorted
     glm::dvec3 keyOrigin{0.0};
     double keyCell = 0.0;
-    // Per object, its box while its transform is the one kept beside it:
-    // the keys' grid follows the scene's box, which a frame would otherwise
-    // sum again over every polygon (1 ms of each frame on the building
-    // floor, to move a chair).
-    std::vector<Aabb> objectBox;
-    std::vector<glm::dmat4> objectTransform;
+    // The keys' grid follows the scene's box: taken from the objects'
+    // boxes, measured again only for the objects that moved.
+    ObjectBoxes objectBoxes;
 };
 
 // The same into `mesh`, reusing its memory and the parts in `cache`. With
