@@ -166,6 +166,8 @@ def replace_materials(gl):
             if imported is None:
                 slot.material = default
                 continue
+            if imported == default or imported in ours.values():
+                continue  # a mesh two nodes share: replaced through the first
             if imported.name not in ours:
                 raise SystemExit('object %r: material %r is not in the glTF file' % (obj.name, imported.name))
             slot.link = 'DATA'
