@@ -150,6 +150,9 @@ private:
     // the form factor's variation is judged at the receiver's corners too,
     // and the source may split one level below the area threshold.
     bool facingClose(ElementId s, ElementId r) const;
+    // The surface s emits and stands on r's plane, across it (a lamp's side
+    // on its wall): r may split one level below the area threshold.
+    bool litAlongBy(ElementId s, ElementId r) const;
     // Whether a link from a close facing source must reach the receiver's
     // children (see the .cpp): it is refined whatever its own transfer.
     bool goesToChildren(const Link& link) const;

@@ -107,6 +107,38 @@ TEST(Refiner, SplitsAShadowBoundaryRightAtTheReceiverBelowTheAreaThreshold) {
     EXPECT_TRUE(split.receiver);
 }
 
+// A glowing panel standing on a unit floor at the area threshold, across
+// it (a lamp's side on the wall it hangs on): its light falls off steeply
+// from where they meet, and the floor splits one level below the threshold.
+// Lifted 20 cm off the floor, or dark, it leaves the floor whole.
+Scene panelOnFloor(double lift, double emission) {
+    Scene s;
+    s.sourcePath = "panel-on-floor";
+    const auto panel = test::addMaterial(s, V(0.5), V(emission), "panel");
+    const auto grey = test::addMaterial(s, V(0.5), V(0.0), "grey");
+    // In the plane x = 0.5, facing +x.
+    test::addQuadObject(s, "panel", panel,
+                        {{V(0.5, lift, 0.3), V(0.5, lift + 0.3, 0.3), V(0.5, lift + 0.3, 0.7), V(0.5, lift, 0.7)}});
+    test::addQuadObject(s, "floor", grey, {horizontal(0.0, 0.0, 1.0, 0.0, 1.0, true)});
+    return s;
+}
+
+TEST(Refiner, AnEmitterStandingOnTheReceiverSplitsItBelowTheAreaThreshold) {
+    const auto wouldSplitFloor = [](const Scene& scene) {
+        Refining r(scene, 0.5);
+        const ElementId panel = r.h.polygonElement(0);
+        r.h[panel].oracle = float(luminance(r.h[panel].emission));  // the radiosity refinement judges by
+        const Link link = r.refiner.compute(panel, r.h.polygonElement(1));
+        EXPECT_GT(link.formFactor(), 0.0f) << scene.sourcePath;
+        return r.refiner.wouldRefine(link);
+    };
+    EXPECT_TRUE(wouldSplitFloor(panelOnFloor(0.0, 10.0)));
+    EXPECT_FALSE(wouldSplitFloor(panelOnFloor(0.2, 10.0)));
+    EXPECT_FALSE(wouldSplitFloor(panelOnFloor(0.0, 0.0)));
+    const Split split = refineOnce(panelOnFloor(0.0, 10.0), 0.5);
+    EXPECT_TRUE(split.receiver);
+}
+
 // No boundary that one end alone carries (nothing blocks): the larger end.
 TEST(Refiner, SplitsTheLargerEndOtherwise) {
     const Split split = refineOnce(emitterFloorBlocker(1.0, 5.0, horizontal(5.0, 10.0, 11.0, 10.0, 11.0, true)));
