@@ -1,6 +1,7 @@
 #include "snapshot/RadiositySnapshot.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -229,24 +230,28 @@ using Key = SnapshotCache::Key;
 double keyCellOf(const Aabb& box) { return std::max(1e-300, 1e-6 * glm::length(box.extent())); }
 
 // A vertex's position on that grid (0 to a million cells along the box, 22
-// bits with room either side) and its normal to a thousandth (11 bits),
-// packed into 128 bits: the building floor keeps a million and more keys,
-// and every pass over them reads a third of what six 64-bit numbers took.
+// bits with room either side), packed into 128 bits: the building floor
+// keeps a million and more keys, and every pass over them reads a third of
+// what six 64-bit numbers took. Vertices at one place with other normals
+// share a key; which of them are smoothed together is up to their normals
+// (smoothGroup).
 Key vertexKey(const MeshSnapshot& mesh, std::uint32_t i, const glm::dvec3& origin, double cell) {
     const glm::dvec3 p = (glm::dvec3(mesh.positions[i]) - origin) / cell;
-    const glm::dvec3 nrm = glm::dvec3(mesh.normals[i]) * 1e3;
-    const auto bits = [](double v, long long offset, long long top) {
-        return static_cast<std::uint64_t>(std::clamp(std::llround(v) + offset, 0LL, top));
+    constexpr long long kCells = (1LL << 22) - 1;
+    const auto cellBits = [&](double v) {
+        return static_cast<std::uint64_t>(std::clamp(std::llround(v) + (1LL << 20), 0LL, kCells));
     };
-    constexpr long long kCells = (1LL << 22) - 1, kNormal = (1LL << 11) - 1;
-    const auto cellBits = [&](double v) { return bits(v, 1LL << 20, kCells); };
-    const auto normalBits = [&](double v) { return bits(v, 1LL << 10, kNormal); };
-    return Key{cellBits(p.x) | cellBits(p.y) << 22 | normalBits(nrm.x) << 44,
-               cellBits(p.z) | normalBits(nrm.y) << 22 | normalBits(nrm.z) << 33};
+    return Key{cellBits(p.x) | cellBits(p.y) << 22, cellBits(p.z)};
 }
 
-// The smoothed value of the group keyed[a, b): the area-weighted mean of
-// its members' own values, written to each; a single vertex keeps its own.
+// The smoothed value of a vertex of the group keyed[a, b) (one place): the
+// area-weighted mean of the own values of the group's vertices whose
+// normals are within kSmoothAngle of its own; a vertex alone keeps its own.
+// Polygons that meet in one plane (a tiled wall) so share their light, and
+// so do the facets of a tessellated curved surface (a sphere of 20,000
+// triangles, whose clusters give groups of facets one value each, showed
+// bands); a box's faces, at right angles, and the column's 16 sides, 22.5
+// degrees apart, keep theirs.
 // With textures, what is smoothed is the light a vertex shows per unit of
 // texel (colour times texelScale: the irradiance, up to the material's
 // factor), and each vertex takes it back times its own reflectance: tiles
@@ -261,40 +266,68 @@ Key vertexKey(const MeshSnapshot& mesh, std::uint32_t i, const glm::dvec3& origi
 // room's floor under a closed door, and the shared value drew a bright
 // band along the door's foot into the dark room.
 inline constexpr double kSeamStep = 4.0;
+inline constexpr double kSmoothAngleCos = 0.9510565162951535;  // cos 18 degrees
 
 template <class Own, class Weight, class Scale>
 void smoothGroup(const std::vector<std::pair<Key, std::uint32_t>>& keyed, std::size_t a, std::size_t b,
                  MeshSnapshot& mesh, const Own& own, const Weight& weight, const Scale& scale) {
-    // Per channel; a vertex that reflects nothing in a channel (texelScale
-    // 0) says nothing about the light there.
-    glm::dvec3 sum(0.0), w(0.0);
-    double darkest = std::numeric_limits<double>::infinity(), brightest = 0.0;
+    // Each member's light (own value times scale, per channel; a channel it
+    // reflects nothing in says nothing about the light there), read once
+    // before any value is written.
+    struct Member {
+        glm::vec3 normal;
+        glm::dvec3 scale, light;
+        double weight = 0.0, mean = -1.0;  // mean light over its channels; -1: none
+    };
+    constexpr std::size_t kInline = 16;
+    std::array<Member, kInline> inlineMembers;
+    std::array<glm::vec3, kInline> inlineValues;
+    std::vector<Member> heapMembers(b - a > kInline ? b - a : 0);
+    std::vector<glm::vec3> heapValues(b - a > kInline ? b - a : 0);
+    Member* members = b - a > kInline ? heapMembers.data() : inlineMembers.data();
+    glm::vec3* values = b - a > kInline ? heapValues.data() : inlineValues.data();
     for (std::size_t k = a; k < b; ++k) {
         const std::uint32_t i = keyed[k].second;
-        const glm::dvec3 s = scale(i);
-        double light = 0.0;
+        Member& m = members[k - a];
+        m.normal = mesh.normals[i];
+        m.scale = scale(i);
+        m.weight = weight(i);
+        m.light = glm::dvec3(0.0);
+        double sum = 0.0;
         int channels = 0;
         for (int c = 0; c < 3; ++c)
-            if (s[c] > 0.0) {
-                sum[c] += weight(i) * own(i)[c] * s[c];
-                w[c] += weight(i);
-                light += own(i)[c] * s[c];
+            if (m.scale[c] > 0.0) {
+                m.light[c] = own(i)[c] * m.scale[c];
+                sum += m.light[c];
                 ++channels;
             }
-        if (channels == 0) continue;
-        darkest = std::min(darkest, light / channels);
-        brightest = std::max(brightest, light / channels);
+        m.mean = channels > 0 ? sum / channels : -1.0;
     }
-    const bool step = brightest > kSeamStep * darkest;
     for (std::size_t k = a; k < b; ++k) {
-        const std::uint32_t i = keyed[k].second;
-        glm::vec3 value = own(i);
-        const glm::dvec3 s = scale(i);
-        if (b - a > 1 && !step)
+        const Member& m = members[k - a];
+        glm::dvec3 sum(0.0), w(0.0);
+        double darkest = std::numeric_limits<double>::infinity(), brightest = 0.0;
+        std::size_t alike = 0;
+        for (std::size_t o = 0; o < b - a; ++o) {
+            const Member& other = members[o];
+            if (glm::dot(m.normal, other.normal) < kSmoothAngleCos) continue;
+            ++alike;
             for (int c = 0; c < 3; ++c)
-                if (s[c] > 0.0 && w[c] > 0.0) value[c] = static_cast<float>(sum[c] / w[c] / s[c]);
-        mesh.colors[i] = value;
+                if (other.scale[c] > 0.0) {
+                    sum[c] += other.weight * other.light[c];
+                    w[c] += other.weight;
+                }
+            if (other.mean < 0.0) continue;
+            darkest = std::min(darkest, other.mean);
+            brightest = std::max(brightest, other.mean);
+        }
+        glm::vec3 value = own(keyed[k].second);
+        if (alike > 1 && !(brightest > kSeamStep * darkest))
+            for (int c = 0; c < 3; ++c)
+                if (m.scale[c] > 0.0 && w[c] > 0.0) value[c] = static_cast<float>(sum[c] / w[c] / m.scale[c]);
+        values[k - a] = value;
     }
+    for (std::size_t k = a; k < b; ++k) mesh.colors[keyed[k].second] = values[k - a];
 }
 
 // What vertex i's value is multiplied by to be smoothed (smoothGroup).

@@ -338,6 +338,38 @@ TEST(RadiositySnapshot, TilesMeetingEdgeToEdgeShareTheirEdgeValues) {
     }
 }
 
+// Two tiles folded along their shared edge x = 1: bent by 10 degrees (two
+// facets of a tessellated curved surface) the edge shows the area-weighted
+// mean of both, so the facets do not show as bands; folded by 25 degrees (a
+// 16-sided column's sides are 22.5 apart) or at a right angle (a box's
+// faces), each keeps its own.
+TEST(RadiositySnapshot, FacetsOfACurvedSurfaceShareTheirEdgeValuesFoldsDoNot) {
+    using V = glm::dvec3;
+    for (const double degrees : {10.0, 25.0, 90.0}) {
+        SCOPED_TRACE(degrees);
+        const double a = glm::radians(degrees);
+        // The right tile turned about the shared edge (the y axis at x = 1).
+        const V far = V(1.0 + std::cos(a), 0.0, std::sin(a));
+        Scene s;
+        const auto m = test::addMaterial(s, V(0.5), V(0.0));
+        test::addQuadObject(s, "left", m, {{V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)}});
+        test::addQuadObject(s, "right", m, {{V(1, 0, 0), far, far + V(0, 1, 0), V(1, 1, 0)}});
+        Hierarchy h(s, 1e-3);
+        h[h.polygonElement(0)].radiosity = V(1.0);
+        h[h.polygonElement(1)].radiosity = V(3.0);
+        const MeshSnapshot mesh = makeRadiositySnapshot(s, h);
+        int shared = 0;
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+            const glm::dvec3 p = mesh.origin + glm::dvec3(mesh.positions[i]);
+            if (std::abs(p.x - 1.0) > 1e-6 || std::abs(p.z) > 1e-6) continue;
+            ++shared;
+            const bool left = std::abs(mesh.normals[i].z) > 0.9999f;  // the left tile's normal is +-z
+            EXPECT_NEAR(mesh.colors[i].x, degrees < 18.0 ? 2.0 : (left ? 1.0 : 3.0), 1e-5) << p.y;
+        }
+        EXPECT_EQ(shared, 4) << "both ends of the shared edge, once in each tile";
+    }
+}
+
 }  // namespace
 }  // namespace rad
 
