@@ -246,12 +246,12 @@ Key vertexKey(const MeshSnapshot& mesh, std::uint32_t i, const glm::dvec3& origi
 
 // The smoothed value of a vertex of the group keyed[a, b) (one place): the
 // area-weighted mean of the own values of the group's vertices whose
-// normals are within kSmoothAngle of its own; a vertex alone keeps its own.
-// Polygons that meet in one plane (a tiled wall) so share their light, and
-// so do the facets of a tessellated curved surface (a sphere of 20,000
-// triangles, whose clusters give groups of facets one value each, showed
-// bands); a box's faces, at right angles, and the column's 16 sides, 22.5
-// degrees apart, keep theirs.
+// normals are within 18 degrees of its own (kSmoothAngleCos); a vertex
+// alone keeps its own. Polygons that meet in one plane (a tiled wall) so
+// share their light, and so do the facets of a tessellated curved surface
+// (a sphere of 20,000 triangles, whose clusters give groups of facets one
+// value each, showed bands); a box's faces, at right angles, and a
+// 16-sided column's sides, 22.5 degrees apart, keep theirs.
 // With textures, what is smoothed is the light a vertex shows per unit of
 // texel (colour times texelScale: the irradiance, up to the material's
 // factor), and each vertex takes it back times its own reflectance: tiles
