@@ -124,7 +124,8 @@ const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount) {
 }
 
 Hierarchy::Hierarchy(const Scene& scene, double minArea, std::vector<double> objectMinArea)
-    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), meshTouched_(scene.polygons.size(), 1),
+    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), polygonLeaves_(scene.polygons.size(), 0),
+      meshTouched_(scene.polygons.size(), 1),
       objectClusters_(scene.objects.size(), kNone), minArea_(minArea), objectMinArea_(std::move(objectMinArea)) {
     std::vector<std::uint32_t> dynamicObjects, staticObjects;
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
@@ -253,6 +254,7 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
     const ElementId id = add(std::move(e), bounds);
     quadrature_[id] = quadraturePoints(elements_[id].patch);
     polygonElements_[polygon] = id;
+    polygonLeaves_[polygon] = 1;
     meshTouched_[polygon] = 1;
     return id;
 }
@@ -491,16 +493,20 @@ void Hierarchy::subdivide(ElementId id) {
         kids.push_back(add(std::move(c), ElementBounds{quadtreeChildRange(parentRange, k), Aabb{}}));
     }
     elements_[id].children = kids;
+    polygonLeaves_[parent.polygon] += 3;  // a leaf became four
     updateGeometry(id);  // touches the polygon's mesh
 }
 
 void Hierarchy::removeChildren(ElementId id) {
-    if (elements_[id].isSurface()) touchMesh(elements_[id].polygon);
+    const bool surface = elements_[id].isSurface();
+    if (surface) touchMesh(elements_[id].polygon);
     std::vector<ElementId> stack = std::move(elements_[id].children);
     elements_[id].children.clear();
+    if (surface && !stack.empty()) ++polygonLeaves_[elements_[id].polygon];  // a leaf now
     while (!stack.empty()) {
         const ElementId e = stack.back();
         stack.pop_back();
+        if (surface && elements_[e].isLeaf()) --polygonLeaves_[elements_[e].polygon];
         for (ElementId c : elements_[e].children) stack.push_back(c);
         elements_[e] = HElement{};
         bounds_[e] = ElementBounds{};

@@ -71,6 +71,9 @@ public:
     // The surface element of each input polygon (quadtree root).
     ElementId polygonElement(std::uint32_t polygon) const { return polygonElements_[polygon]; }
     std::size_t polygonCount() const { return polygonElements_.size(); }
+    // How many leaves a polygon's quadtree has (what meshing it writes),
+    // kept through subdivision and removal.
+    std::uint32_t polygonLeaves(std::uint32_t polygon) const { return polygonLeaves_[polygon]; }
     // Which polygons' meshes may have changed since the snapshot last looked
     // (its leaves, their corners or their radiosity): set here by every
     // subdivision, removal and move, and by the solver for the leaves whose
@@ -180,6 +183,7 @@ private:
     std::vector<ClusterShape> shapes_;
     std::vector<std::uint32_t> freeShapes_;
     std::vector<ElementId> polygonElements_;
+    std::vector<std::uint32_t> polygonLeaves_;  // per polygon (polygonLeaves)
     std::vector<std::uint8_t> meshTouched_;  // per polygon (touchMesh)
     std::vector<ElementId> objectClusters_;
     std::vector<ElementId> movable_;

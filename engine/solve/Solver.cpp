@@ -110,10 +110,12 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
             std::vector<glm::dvec3> childB(children.size());
             std::vector<Walk> walks(children.size());
             std::vector<std::vector<ElementId>> visited(children.size()), unpushed(children.size());
+            std::vector<std::vector<std::uint32_t>> polygons(walk.polygons ? children.size() : 0);
             tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) {
                 walks[i].visited = walk.visited ? &visited[i] : nullptr;
                 walks[i].deadline = walk.deadline;
                 walks[i].unpushed = walk.unpushed ? &unpushed[i] : nullptr;
+                walks[i].polygons = walk.polygons ? &polygons[i] : nullptr;
                 childB[i] =
                     push(children[i], surfaceDown[i], clusterDown[i], below, depth + 1, walks[i]);
             });
@@ -126,6 +128,8 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
                     walk.visited->insert(walk.visited->end(), visited[i].begin(), visited[i].end());
                 if (walk.unpushed)
                     walk.unpushed->insert(walk.unpushed->end(), unpushed[i].begin(), unpushed[i].end());
+                if (walk.polygons)
+                    walk.polygons->insert(walk.polygons->end(), polygons[i].begin(), polygons[i].end());
             }
         } else {
             for (std::size_t i = 0; i < children.size(); ++i) {
@@ -140,6 +144,9 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
     } else {
         const Down here = surfaceDown(id, down);
         if (e.isLeaf()) {
+            // A polygon's leaves come one after another.
+            if (walk.polygons && (walk.polygons->empty() || walk.polygons->back() != e.polygon))
+                walk.polygons->push_back(e.polygon);
             b = e.emission + e.reflectance * (arriving(here.irradiance, here.formFactorSum, e.polygon) + here.direct);
             if (b != e.radiosity) h_.touchMesh(e.polygon);
             walk.change += e.area * std::abs(luminance(b - e.radiosity));
@@ -179,7 +186,8 @@ double Solver::pushPull() {
 }
 
 std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dirty,
-                                               std::optional<PushDeadline> deadline) {
+                                               std::optional<PushDeadline> deadline,
+                                               std::vector<std::uint32_t>* polygons) {
     // What waited is pushed now, unless it waits again (freed since it
     // began waiting, a removed subdivision: nothing to push).
     std::vector<ElementId> waited;
@@ -198,6 +206,7 @@ std::vector<ElementId> Solver::partialPushPull(const std::vector<ElementId>& dir
     walk.visited = &visited;
     walk.deadline = deadline ? &*deadline : nullptr;
     walk.unpushed = &unpushed_;
+    walk.polygons = polygons;
     push(h_.root(), Down{}, FacetArrivals{}, false, 0, walk);
     return visited;
 }

@@ -72,8 +72,11 @@ class Solver {
         std::chrono::steady_clock::time_point stop;
         double secondsPerArea = 0.0;
     };
+    // `polygons`, when given, gets the polygons of the leaves visited (a
+    // polygon may come more than once).
     std::vector<ElementId> partialPushPull(const std::vector<ElementId>& dirty,
-                                           std::optional<PushDeadline> deadline = std::nullopt);
+                                           std::optional<PushDeadline> deadline = std::nullopt,
+                                           std::vector<std::uint32_t>* polygons = nullptr);
     // The dirty elements the last deadline left unpushed.
     const std::vector<ElementId>& unpushed() const { return unpushed_; }
     // Iterates gather and push-pull until converged or maxIterations. Every
@@ -133,6 +136,7 @@ class Solver {
         double change = 0.0, total = 0.0;
         const PushDeadline* deadline = nullptr;
         std::vector<ElementId>* unpushed = nullptr;  // with a deadline
+        std::vector<std::uint32_t>* polygons = nullptr;  // of the leaves visited
     };
     // One element of a push-pull: its new B. `forced`: the whole subtree is
     // pushed (full push-pull, or below a dirty element); otherwise only the

@@ -10,9 +10,7 @@
 #include <string>
 #include <tuple>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "hierarchy/ClusterShape.h"
 #include "refine/Refiner.h"
@@ -453,37 +451,21 @@ std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats, bool onTheCl
                                         pushSecondsPerElement_ * elementsPerArea};
     }
     const auto began = std::chrono::steady_clock::now();
-    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty(), deadline);
+    std::vector<std::uint32_t> polygons;  // of the leaves the push visited
+    std::vector<ElementId> visited = solver_.partialPushPull(refiner_.takeDirty(), deadline, &polygons);
     unsent_.mayHaveChanged(visited);  // radiosity moved
     // Small pushes say more about the call than about elements.
     if (visited.size() >= kPushSample)
         pushSecondsPerElement_ = std::max(secondsSince(began) / double(visited.size()), 0.75 * pushSecondsPerElement_);
     stats.changedElements += visited.size();
     // The snapshot meshes again every polygon with a changed leaf, all of
-    // its leaves: that, counted once a frame, is what its time follows. The
-    // leaves are counted on all cores (an edit of a light changes every
-    // polygon).
+    // its leaves: that, counted once a frame, is what its time follows.
+    // (Read from the visited elements and counted by walking each polygon's
+    // tree, it took 2 to 6 ms of a building-floor frame whose push visited
+    // 100,000 to 190,000 elements.)
     if (polygonStamp_.size() < h_.polygonCount()) polygonStamp_.resize(h_.polygonCount(), 0);
-    std::vector<std::uint32_t> polygons;
-    for (ElementId e : visited) {
-        const HElement& el = h_[e];
-        if (!el.isSurface() || !el.children.empty() || el.polygon == kNone) continue;
-        if (std::exchange(polygonStamp_[el.polygon], pushFrame_) != pushFrame_) polygons.push_back(el.polygon);
-    }
-    stats.changedLeaves += tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, polygons.size()), std::size_t(0),
-        [&](const tbb::blocked_range<std::size_t>& r, std::size_t leaves) {
-            std::vector<ElementId> stack;
-            for (std::size_t i = r.begin(); i < r.end(); ++i)
-                for (stack.assign(1, h_.polygonElement(polygons[i])); !stack.empty();) {
-                    const HElement& q = h_[stack.back()];
-                    stack.pop_back();
-                    leaves += q.children.empty();
-                    stack.insert(stack.end(), q.children.begin(), q.children.end());
-                }
-            return leaves;
-        },
-        std::plus<>());
+    for (std::uint32_t p : polygons)
+        if (std::exchange(polygonStamp_[p], pushFrame_) != pushFrame_) stats.changedLeaves += h_.polygonLeaves(p);
     return visited;
 }
 

@@ -147,6 +147,41 @@ TEST(Hierarchy, QuadraturePointsFollowThePatch) {
     checkAll("moved");
 }
 
+// Each polygon's count of leaves (what meshing it writes, and what a
+// frame's meshing time is expected from) follows subdivision and removal:
+// it equals the leaves found by walking the polygon's quadtree.
+TEST(Hierarchy, PolygonLeavesFollowSubdivisionAndRemoval) {
+    const Scene scene = test::roomWithBlock();
+    Hierarchy h(scene, 1e-4);
+    const auto expectCounts = [&](const char* when) {
+        for (std::uint32_t p = 0; p < h.polygonCount(); ++p) {
+            std::uint32_t leaves = 0;
+            for (std::vector<ElementId> stack{h.polygonElement(p)}; !stack.empty();) {
+                const HElement& e = h[stack.back()];
+                stack.pop_back();
+                leaves += e.isLeaf();
+                stack.insert(stack.end(), e.children.begin(), e.children.end());
+            }
+            EXPECT_EQ(h.polygonLeaves(p), leaves) << when << ", polygon " << p;
+        }
+    };
+    expectCounts("built");
+    const ElementId wall = h.polygonElement(0), floor = h.polygonElement(1);
+    h.subdivide(wall);
+    h.subdivide(h[wall].children[2]);
+    h.subdivide(h[h[wall].children[2]].children[0]);
+    h.subdivide(floor);
+    EXPECT_EQ(h.polygonLeaves(0), 10u);
+    expectCounts("subdivided");
+    h.removeChildren(h[wall].children[2]);  // seven leaves become one
+    EXPECT_EQ(h.polygonLeaves(0), 4u);
+    expectCounts("a subtree removed");
+    h.removeChildren(floor);
+    h.removeChildren(floor);  // nothing left to remove
+    EXPECT_EQ(h.polygonLeaves(1), 1u);
+    expectCounts("removed");
+}
+
 TEST(Hierarchy, AnObjectsClustersDoNotChangeWhenItTurns) {
     const auto grouped = [](double degrees) {
         Scene s;
