@@ -499,14 +499,15 @@ void Hierarchy::subdivide(ElementId id) {
 
 void Hierarchy::removeChildren(ElementId id) {
     const bool surface = elements_[id].isSurface();
-    if (surface) touchMesh(elements_[id].polygon);
+    const std::uint32_t polygon = elements_[id].polygon;
+    if (surface) touchMesh(polygon);
     std::vector<ElementId> stack = std::move(elements_[id].children);
     elements_[id].children.clear();
-    if (surface && !stack.empty()) ++polygonLeaves_[elements_[id].polygon];  // a leaf now
+    if (surface && !stack.empty()) ++polygonLeaves_[polygon];  // a leaf now
     while (!stack.empty()) {
         const ElementId e = stack.back();
         stack.pop_back();
-        if (surface && elements_[e].isLeaf()) --polygonLeaves_[elements_[e].polygon];
+        if (surface && elements_[e].isLeaf()) --polygonLeaves_[polygon];
         for (ElementId c : elements_[e].children) stack.push_back(c);
         elements_[e] = HElement{};
         bounds_[e] = ElementBounds{};

@@ -275,17 +275,15 @@ void smoothGroup(const std::vector<std::pair<Key, std::uint32_t>>& keyed, std::s
     // reflects nothing in says nothing about the light there), read once
     // before any value is written.
     struct Member {
-        glm::vec3 normal;
+        glm::vec3 normal, value;  // value: what it shows, written last
         glm::dvec3 scale, light;
         double weight = 0.0, mean = -1.0;  // mean light over its channels; -1: none
     };
+    // Groups are small (a vertex where a few polygons meet): on the stack.
     constexpr std::size_t kInline = 16;
     std::array<Member, kInline> inlineMembers;
-    std::array<glm::vec3, kInline> inlineValues;
     std::vector<Member> heapMembers(b - a > kInline ? b - a : 0);
-    std::vector<glm::vec3> heapValues(b - a > kInline ? b - a : 0);
     Member* members = b - a > kInline ? heapMembers.data() : inlineMembers.data();
-    glm::vec3* values = b - a > kInline ? heapValues.data() : inlineValues.data();
     for (std::size_t k = a; k < b; ++k) {
         const std::uint32_t i = keyed[k].second;
         Member& m = members[k - a];
@@ -325,9 +323,9 @@ void smoothGroup(const std::vector<std::pair<Key, std::uint32_t>>& keyed, std::s
         if (alike > 1 && !(brightest > kSeamStep * darkest))
             for (int c = 0; c < 3; ++c)
                 if (m.scale[c] > 0.0 && w[c] > 0.0) value[c] = static_cast<float>(sum[c] / w[c] / m.scale[c]);
-        values[k - a] = value;
+        members[k - a].value = value;
     }
-    for (std::size_t k = a; k < b; ++k) mesh.colors[keyed[k].second] = values[k - a];
+    for (std::size_t k = a; k < b; ++k) mesh.colors[keyed[k].second] = members[k - a].value;
 }
 
 // What vertex i's value is multiplied by to be smoothed (smoothGroup).
