@@ -44,6 +44,9 @@ constexpr double kBackFaceWarningShare = 0.05;
 // Above this share of the emitted light lost the solve warns (the shipped
 // scenes: -0.4% to 1.7%, `dark-room` the most).
 constexpr double kLostWarningShare = 0.1;
+// Above this share of the emitted light leaving the scene straight from
+// glowing faces the solve warns (the shipped scenes: none measured).
+constexpr double kEscapingWarningShare = 0.01;
 constexpr double kRoundTolerance = 3e-3;
 // How far from the scene as loaded, in its sizes, an object or light may be
 // moved. Rays are traced in single precision in that scene's frame
@@ -736,6 +739,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     st.memory = {s.hierarchy.memoryBytes(), s.links.memoryBytes() + s.lightLinks.memoryBytes()};
     st.energy = energy();
     for (Warning& w : backFaceWarnings(s.scene, st.energy, kBackFaceWarningShare)) st.warnings.push_back(std::move(w));
+    for (Warning& w : escapingLightWarnings(s.scene, st.energy, kEscapingWarningShare)) st.warnings.push_back(std::move(w));
     // Unconverged, light still on its way counts as lost: the message says why it stopped.
     if (st.converged)
         for (Warning& w : lostLightWarnings(st.energy, kLostWarningShare)) st.warnings.push_back(std::move(w));

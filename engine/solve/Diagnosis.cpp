@@ -140,6 +140,30 @@ std::vector<Warning> backFaceWarnings(const Scene& scene, const EnergyBalance& e
     return {{"back_faces", m.str(), objects, share}};
 }
 
+std::vector<Warning> escapingLightWarnings(const Scene& scene, const EnergyBalance& energy, double threshold) {
+    double escaping = 0.0;
+    std::vector<std::pair<double, std::uint32_t>> by;
+    for (std::uint32_t o = 0; o < energy.escapedEmissionByObject.size() && o < scene.objects.size(); ++o)
+        if (energy.escapedEmissionByObject[o] > 0.0) {
+            by.emplace_back(energy.escapedEmissionByObject[o], o);
+            escaping += energy.escapedEmissionByObject[o];
+        }
+    if (!(energy.emitted > 0.0) || !(escaping > threshold * energy.emitted)) return {};
+    std::sort(by.begin(), by.end(), std::greater<>());
+    const double share = escaping / energy.emitted;
+    std::ostringstream m;
+    m << std::lround(100.0 * share) << "% of the emitted light leaves the scene straight from glowing faces";
+    std::vector<std::string> objects;
+    for (const auto& [power, o] : by) {
+        if (objects.size() == 3 || power < 0.1 * escaping) break;
+        m << (objects.empty() ? ", " : " and ") << std::lround(100.0 * power / escaping) << "% of it from '"
+          << scene.objects[o].name << "'";
+        objects.push_back(scene.objects[o].name);
+    }
+    m << ": does a face look out of the scene (flush with a wall or ceiling, facing away)? It lights nothing";
+    return {{"light_leaves", m.str(), objects, share}};
+}
+
 std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double threshold) {
     if (!(energy.emitted > 0.0) || !(energy.lost > threshold * energy.emitted)) return {};
     const double share = energy.lost / energy.emitted;

@@ -27,6 +27,12 @@ std::vector<Warning> guardWarnings(const Scene& scene, const Solver& solver, dou
 // converges. None otherwise.
 std::vector<Warning> backFaceWarnings(const Scene& scene, const EnergyBalance& energy, double threshold);
 
+// A warning when more than `threshold` of the emitted light leaves the
+// scene straight from glowing faces (EnergyBalance::escapedEmissionByObject),
+// naming the objects it leaves from: a lamp box flush with a ceiling glows
+// out of the room through its top. None otherwise.
+std::vector<Warning> escapingLightWarnings(const Scene& scene, const EnergyBalance& energy, double threshold);
+
 // A warning when more than `threshold` of the emitted light is lost
 // (EnergyBalance::lost: neither absorbed, escaped nor taken by back faces):
 // a light source hidden under another surface, or links that miss much of

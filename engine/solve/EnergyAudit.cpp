@@ -57,6 +57,7 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
         return polygon < scene.polygons.size() ? scene.polygons[polygon].object : std::uint32_t(scene.objects.size());
     };
     tbb::combinable<std::vector<double>> backBy([&] { return std::vector<double>(scene.objects.size() + 1, 0.0); });
+    tbb::combinable<std::vector<double>> escapedBy([&] { return std::vector<double>(scene.objects.size() + 1, 0.0); });
     // A ray leaves a surface ten times as far off it as what counts as
     // coincident there (RayCaster::blocked), and beyond what Embree's floats
     // resolve. (Ten times the frame's tolerance, a millionth of a scene that
@@ -112,6 +113,12 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
             }
         }
         escaped[i] = leaving[i] * missed / count;
+        // A glowing leaf most of whose rays meet nothing looks out of the
+        // scene (an open room's lamp sends some of its light out through
+        // the opening, and does not count): the emitted part of what it
+        // loses (E of its B).
+        const double emitted = leaf.area * luminance(leaf.emission);
+        if (2 * missed > count && emitted > 0.0) escapedBy.local()[objectOf(leaf.polygon)] += emitted * missed / count;
         back[i] = leaving[i] * backs / count;
     });
     energy.escaped = energy.backFaces = 0.0;
@@ -169,6 +176,10 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
                 if (backs[k] > 0.0) by[backObject[k]] += power * backs[k] / total;
         }
     }
+    energy.escapedEmissionByObject.assign(scene.objects.size(), 0.0);
+    escapedBy.combine_each([&](const std::vector<double>& by) {
+        for (std::size_t o = 0; o < scene.objects.size(); ++o) energy.escapedEmissionByObject[o] += by[o];
+    });
     energy.backFacesByObject.assign(scene.objects.size(), 0.0);
     backBy.combine_each([&](const std::vector<double>& by) {
         for (std::size_t o = 0; o < scene.objects.size(); ++o) energy.backFacesByObject[o] += by[o];

@@ -1,6 +1,8 @@
 // What a solve tells the user when light goes missing (solve/Diagnosis.h).
 
 #include "solve/Diagnosis.h"
+#include "radiosity/Engine.h"
+#include "radiosity/Gltf.h"
 #include "support/TestScenes.h"
 
 #include <gtest/gtest.h>
@@ -50,6 +52,48 @@ TEST(Diagnosis, ALampFacingTheCeilingCloseByIsSaid) {
     // 30 cm under the ceiling, facing it (an uplight): farther than a tenth
     // of the panel's size (7.5 cm), its light spreads over the ceiling.
     EXPECT_TRUE(trappedLightWarnings(room(0.3, true)).empty());
+}
+
+// A glowing box flush with the ceiling of a closed room: its top glows out
+// of the room, which the energy balance counts as escaped (a third of the
+// box's light) and the solve says, naming the box. Hung 10 cm lower, every
+// face lights the room: nothing escapes and nothing is said. An open room's
+// lamp, whose light partly leaves through the opening, is not such a face
+// (the Cornell box: 30% of its light escapes, none of it said).
+TEST(Diagnosis, AGlowingFaceLookingOutOfTheSceneIsSaid) {
+    using V = glm::dvec3;
+    const auto room = [](double gap) {
+        Scene s;
+        s.sourcePath = "lamp-box";
+        const auto grey = test::addMaterial(s, V(0.7), V(0.0), "grey");
+        const auto light = test::addMaterial(s, V(0.5), V(5.0), "light");
+        test::addQuadObject(s, "room", grey, test::boxFaces(V(0.0), V(4.0, 2.6, 3.0), true));
+        test::addQuadObject(s, "lamp-box", light, test::boxFaces(V(1.7, 2.3 - gap, 1.2), V(2.3, 2.6 - gap, 1.8), false));
+        return s;
+    };
+    EngineSettings coarse;
+    coarse.epsilon = 1e-3;
+    const auto said = [&](const Scene& scene) {
+        Engine engine(scene, coarse);
+        EXPECT_TRUE(engine.solve().converged);
+        std::vector<Warning> out;
+        for (const Warning& w : engine.stats().warnings)
+            if (w.kind == "light_leaves") out.push_back(w);
+        return std::pair{out, engine.energy()};
+    };
+    const auto [flush, flushEnergy] = said(room(0.0));
+    ASSERT_EQ(flush.size(), 1u);
+    EXPECT_EQ(flush[0].objects, std::vector<std::string>{"lamp-box"});
+    // The top is 0.36 of the box's 1.44 m^2 of glowing faces.
+    EXPECT_NEAR(flush[0].amount, 0.36 / 1.44, 0.02);
+    EXPECT_NEAR(flushEnergy.escaped / flushEnergy.emitted, 0.36 / 1.44, 0.03);
+    EXPECT_NE(flush[0].message.find("100% of it from 'lamp-box'"), std::string::npos) << flush[0].message;
+    const auto [hung, hungEnergy] = said(room(0.1));
+    EXPECT_TRUE(hung.empty());
+    EXPECT_LT(hungEnergy.escaped, 1e-3 * hungEnergy.emitted);
+    const auto [open, openEnergy] = said(loadGltf(test::sourcePath("scenes/cornell-box.gltf")));
+    EXPECT_TRUE(open.empty());
+    EXPECT_GT(openEnergy.escaped, 0.1 * openEnergy.emitted);
 }
 
 }  // namespace

@@ -31,6 +31,11 @@ struct EnergyBalance {
     // backFaces by the object whose polygons' backs the light meets (by
     // index in Scene::objects): a room whose normals point out shows here.
     std::vector<double> backFacesByObject;
+    // Of `escaped`, the emitted light that leaves the scene straight from
+    // glowing faces most of whose rays meet nothing, by object: a face that
+    // looks out of a closed room (the top of a lamp box flush with its
+    // ceiling) shows here, an open room's lamp seen through the opening not.
+    std::vector<double> escapedEmissionByObject;
     // emitted - absorbed - escaped - backFaces: light the solution lost
     // (positive) or made (negative), and max(0, absorbed - emitted).
     double lost = 0.0;
