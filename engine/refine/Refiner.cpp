@@ -36,6 +36,31 @@ void orderedErase(std::vector<LinkId>& list, LinkId id) {
     list.erase(it);
 }
 
+// The part of surface `e` in front of the plane of surface `other`, as the
+// centroids of its fan's triangles (at most three: a quad cut by a plane has
+// at most five corners), each standing for its triangle's area.
+SourcePoints frontPart(const HElement& e, const HElement& other) {
+    std::array<glm::dvec3, 8> cut;
+    int m = 0;
+    const auto height = [&](const glm::dvec3& p) { return glm::dot(other.normal, p - other.center); };
+    for (int k = 0; k < e.patch.n && m + 2 <= int(cut.size()); ++k) {
+        const glm::dvec3 a = e.patch.v[k], b = e.patch.v[(k + 1) % e.patch.n];
+        const double ha = height(a), hb = height(b);
+        if (ha > 0.0) cut[m++] = a;
+        if ((ha > 0.0) != (hb > 0.0)) cut[m++] = a + (b - a) * (ha / (ha - hb));
+    }
+    SourcePoints out;
+    for (int k = 1; k + 1 < m && out.n < SourcePoints::kMax; ++k) {
+        const double area = 0.5 * glm::length(glm::cross(cut[k] - cut[0], cut[k + 1] - cut[0]));
+        if (!(area > 0.0)) continue;
+        out.p[out.n] = (cut[0] + cut[k] + cut[k + 1]) / 3.0;
+        out.normal[out.n] = e.normal;
+        out.polygon[out.n] = e.polygon;
+        out.area[out.n++] = area;
+    }
+    return out;
+}
+
 }  // namespace
 
 Refiner::Refiner(Hierarchy& hierarchy, LinkStore& links, const RayCaster& rays, RefineSettings settings)
@@ -52,19 +77,30 @@ bool Refiner::touchesMovable(ElementId e) const {
 
 std::size_t Refiner::segments(ElementId s, ElementId r, Segments& out, RayWeights& weights) const {
     const int order = settings_.samplesPerElement >= 4 ? 2 : 1;
-    const SourcePoints ps = sourcePoints(h_, s, h_.box(r), order), pr = sourcePoints(h_, r, h_.box(s), order);
     std::size_t n = 0;
     double total = 0.0;
-    for (int i = 0; i < ps.n; ++i)
-        for (int j = 0; j < pr.n; ++j) {
-            out[n] = {ps.p[i], pr.p[j], ps.polygon[i], pr.polygon[j]};
-            // The point-to-point transfer the ray stands for: A_i A_j cos cos / r^2.
-            const glm::dvec3 d = pr.p[j] - ps.p[i];
-            const double r2 = glm::dot(d, d);
-            const double c = r2 > 0.0 ? std::max(0.0, glm::dot(ps.normal[i], d)) * std::max(0.0, -glm::dot(pr.normal[j], d)) : 0.0;
-            weights[n] = r2 > 0.0 ? ps.area[i] * pr.area[j] * c / (r2 * r2) : 0.0;
-            total += weights[n++];
-        }
+    const auto pair = [&](const SourcePoints& ps, const SourcePoints& pr) {
+        n = 0;
+        total = 0.0;
+        for (int i = 0; i < ps.n; ++i)
+            for (int j = 0; j < pr.n; ++j) {
+                out[n] = {ps.p[i], pr.p[j], ps.polygon[i], pr.polygon[j]};
+                // The point-to-point transfer the ray stands for: A_i A_j cos cos / r^2.
+                const glm::dvec3 d = pr.p[j] - ps.p[i];
+                const double r2 = glm::dot(d, d);
+                const double c = r2 > 0.0 ? std::max(0.0, glm::dot(ps.normal[i], d)) * std::max(0.0, -glm::dot(pr.normal[j], d)) : 0.0;
+                weights[n] = r2 > 0.0 ? ps.area[i] * pr.area[j] * c / (r2 * r2) : 0.0;
+                total += weights[n++];
+            }
+    };
+    pair(sourcePoints(h_, s, h_.box(r), order), sourcePoints(h_, r, h_.box(s), order));
+    // Two surfaces that see each other only between their points (a wall
+    // element across an uplight's plane, its points below it): the rays run
+    // between the parts of each in front of the other.
+    if (!(total > 0.0) && h_[s].isSurface() && h_[r].isSurface()) {
+        const SourcePoints fs = frontPart(h_[s], h_[r]), fr = frontPart(h_[r], h_[s]);
+        if (fs.n > 0 && fr.n > 0) pair(fs, fr);
+    }
     // Facing nowhere (a pair judged by other points): the rays count alike.
     if (!(total > 0.0) || !std::isfinite(total))
         for (std::size_t i = 0; i < n; ++i) weights[i] = 1.0;

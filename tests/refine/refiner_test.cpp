@@ -107,6 +107,25 @@ TEST(Refiner, SplitsAShadowBoundaryRightAtTheReceiverBelowTheAreaThreshold) {
     EXPECT_TRUE(split.receiver);
 }
 
+// A wall element across an uplight's plane (a panel facing up 1 cm above a
+// cabinet top, the wall from 40 cm below it to 9 cm above): the element's
+// sample points all lie below the panel's plane, behind the cabinet's top,
+// yet its upper strip sees the whole panel with nothing between. The rays
+// run between the parts of the two in front of each other.
+TEST(Refiner, SurfacesThatSeeEachOtherOnlyBetweenTheirPointsAreJudgedByTheirFacingParts) {
+    Scene s;
+    s.sourcePath = "uplight-wall";
+    const auto light = test::addMaterial(s, V(0.0), V(10.0), "light");
+    const auto grey = test::addMaterial(s, V(0.5), V(0.0), "grey");
+    test::addQuadObject(s, "uplight", light, {horizontal(2.01, 0.05, 0.4, 0.0, 0.7, true)});
+    test::addQuadObject(s, "wall", grey, {{V(0.0, 1.6, 0.0), V(0.0, 2.1, 0.0), V(0.0, 2.1, 0.7), V(0.0, 1.6, 0.7)}});
+    test::addQuadObject(s, "cabinet", grey, test::boxFaces(V(0.0, 0.0, -0.1), V(0.45, 2.0, 0.8), false));
+    Refining r(s, 1e-6);
+    const Link link = r.refiner.compute(r.h.polygonElement(0), r.h.polygonElement(1));
+    EXPECT_GT(link.unoccluded, 0.0f);
+    EXPECT_EQ(link.visibility(), 1.0);  // 0 when the rays ran from the wall's points behind the cabinet
+}
+
 // A glowing panel standing on a unit floor at the area threshold, across
 // it (a lamp's side on the wall it hangs on): its light falls off steeply
 // from where they meet, and the floor splits one level below the threshold.
