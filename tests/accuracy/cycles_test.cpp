@@ -62,6 +62,15 @@ const ReferenceCase kLampRoomCase{"lamp-room", 128, 96, 0.05};
 // surface a lamp stands on could split below the area threshold). Its panel
 // and box are in view: the camera check covers a turned camera.
 const ReferenceCase kTurnedRoomCase{"turned-room", 128, 96, 0.05, "bench/untuned/turned-room.gltf"};
+// A room lit only by two uplights on tall cabinets against its side walls
+// (bench/untuned/uplight_room.py): the walls above the cabinets take nearly
+// half their light, and everything else sees the white ceiling, a mezzanine
+// shading a sofa and a table under it. No issue sets its target; it is held
+// to the Cornell box's 5% (measured 4.5%; 4.9%, its light 2.7% darker in
+// the mean, before two surfaces that see each other only between their
+// sample points cast their rays between the parts that face). Its lights
+// face up, away from the camera.
+const ReferenceCase kUplightRoomCase{"uplight-room", 128, 96, 0.05, "bench/untuned/uplight-room.gltf"};
 // Measured in the README (4.5% at the default settings; 6.6% before the
 // clusters' exposure, 12.2% before the fill), not asserted: no
 // issue sets its target, and its solve under the sanitizers would cost CI
@@ -169,6 +178,7 @@ TEST(CyclesReference, MatchesTheSceneFiles) {
     expectReferenceMatchesScene(kSlabRoomsCase);
     expectReferenceMatchesScene(kLampRoomCase);
     expectReferenceMatchesScene(kTurnedRoomCase);
+    expectReferenceMatchesScene(kUplightRoomCase);
     expectReferenceMatchesScene(kOfficeCase);
 }
 
@@ -184,6 +194,7 @@ TEST(CyclesAccuracy, ARoomWrittenByBlenderWithinFivePercent) {
 TEST(CyclesAccuracy, RoomsOfSlabsWithinEightPercent) { expectWithinTarget(kSlabRoomsCase); }
 TEST(CyclesAccuracy, PointAndSpotLightsWithinFivePercent) { expectWithinTarget(kLampRoomCase); }
 TEST(CyclesAccuracy, ARoomTurnedOffTheAxesWithinFivePercent) { expectWithinTarget(kTurnedRoomCase); }
+TEST(CyclesAccuracy, ARoomLitByUplightsWithinFivePercent) { expectWithinTarget(kUplightRoomCase); }
 
 }  // namespace
 }  // namespace rad
