@@ -386,7 +386,7 @@ std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool re
         // area after a move may differ by a rounding error, and the depth of
         // its existing quadtree must stay allowed.
         const std::uint64_t count =
-            renumber ? bounds_[id].range.size() : quadtreeIndexCount(e.area, minArea(e.object) / 4.0, what);
+            renumber ? bounds_[id].range.size() : quadtreeIndexCount(e.area, minArea(e.object) / 16.0, what);
         bounds_[id].range = {first, checkedAdd(first, count - 1, what)};
         assignQuadtreeRanges(id);
         return bounds_[id].range.last;
@@ -442,20 +442,17 @@ void Hierarchy::attachToRoot(ElementId cluster) {
     assignRanges(root_, 0, true);
 }
 
-// The index ranges number one level below the area threshold (children of
-// at least minArea / 4): a leaf at the threshold has a range of 5.
-bool Hierarchy::canSubdivide(ElementId id) const {
+// A leaf at the area threshold has a range of 21: itself, its 4 children and
+// 16 grandchildren (kLevelsBelowThreshold); one a level below, 5.
+bool Hierarchy::canSubdivide(ElementId id, int below) const {
     const HElement& e = elements_[id];
-    return e.isSurface() && bounds_[id].range.size() > 5 && e.depth < HElement::kMaxDepth;
-}
-
-bool Hierarchy::canSubdivideNearContact(ElementId id) const {
-    const HElement& e = elements_[id];
-    return e.isSurface() && bounds_[id].range.size() > 1 && e.depth < HElement::kMaxDepth;
+    std::uint64_t atThreshold = 1;  // (4^(levels + 1) - 1) / 3, levels numbered below a leaf there
+    for (int k = 0; k < kLevelsBelowThreshold - below; ++k) atThreshold = 4 * atThreshold + 1;
+    return e.isSurface() && bounds_[id].range.size() > atThreshold && e.depth < HElement::kMaxDepth;
 }
 
 void Hierarchy::subdivide(ElementId id) {
-    if (!elements_[id].isLeaf() || !canSubdivideNearContact(id)) return;
+    if (!elements_[id].isLeaf() || !canSubdivide(id, kLevelsBelowThreshold)) return;
     const HElement parent = elements_[id];  // copy: add() may reallocate
     const IndexRange parentRange = bounds_[id].range;
     // Parametric corners of the four children. Quads: the four sub-squares.

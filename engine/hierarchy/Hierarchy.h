@@ -126,12 +126,14 @@ public:
     // The same for a whole quadtree, bottom-up.
     void refreshQuadtreeCoverage(ElementId surface);
 
-    // Surfaces: whether children may be made (each keeps at least minArea).
-    bool canSubdivide(ElementId id) const;
-    // The same one level further (children of at least minArea / 4), for a
-    // shadow boundary cast by a blocker right at the surface, or a surface
-    // shining on another close in front of it (Refiner::chooseSplit).
-    bool canSubdivideNearContact(ElementId id) const;
+    // Surfaces: whether children may be made, each keeping at least minArea,
+    // or `below` levels further (children of at least minArea / 4^below):
+    // one for a shadow boundary cast by a blocker right at the surface, or a
+    // surface shining on another close in front of it; two for a surface an
+    // emitter shines along (Refiner::chooseSplit). The index ranges number
+    // kLevelsBelowThreshold levels below the area threshold.
+    static constexpr int kLevelsBelowThreshold = 2;
+    bool canSubdivide(ElementId id, int below = 0) const;
     // Makes the four children of a surface leaf (no-op if they exist).
     void subdivide(ElementId id);
     // Removes the children (and their subtrees) of a surface element.

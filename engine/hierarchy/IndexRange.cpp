@@ -25,7 +25,7 @@ std::uint64_t quadtreeIndexCount(double area, double minArea, const std::string&
     const int depth = maxQuadtreeDepth(area, minArea);
     // (4^(D+1) - 1) / 3 fits in 64 bits for D <= 31.
     if (depth > 31) {
-        // The smallest element numbered (the hierarchy numbers a level below
+        // The smallest element numbered (the hierarchy numbers two levels below
         // the minimum area), as 1e-300 m^2 rather than 0.000000.
         std::ostringstream shown;
         shown << minArea;

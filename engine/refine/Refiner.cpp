@@ -441,10 +441,10 @@ void Refiner::linkRoot() {
     attach(l);
 }
 
-bool Refiner::canSplit(ElementId e, bool nearContact) const {
+bool Refiner::canSplit(ElementId e, int below) const {
     const HElement& el = h_[e];
     if (!el.isSurface()) return !el.children.empty();
-    return nearContact ? h_.canSubdivideNearContact(e) : h_.canSubdivide(e);
+    return h_.canSubdivide(e, below);
 }
 
 bool Refiner::facingClose(ElementId s, ElementId r) const {
@@ -489,9 +489,10 @@ Refiner::Split Refiner::chooseSplit(const Link& link) const {
     // A source close in front of the receiver may split one level below the
     // area threshold: lit on one part and hidden on the other (a door's lit
     // face over a doorway's edge), it would send the gap the mean of both.
-    // So may a receiver an emitter stands on (litAlongBy).
-    const bool cs = canSplit(link.source, facingClose(link.source, link.receiver)),
-               cr = canSplit(link.receiver, litAlongBy(link.source, link.receiver));
+    // A receiver an emitter shines along may split two levels below it
+    // (litAlongBy).
+    const bool cs = canSplit(link.source, facingClose(link.source, link.receiver) ? 1 : 0),
+               cr = canSplit(link.receiver, litAlongBy(link.source, link.receiver) ? 2 : 0);
     // A shadow boundary across one end only: split that end. The rays run
     // from each of the source's four points to each of the receiver's four
     // (ray 4 i + j: source point i, receiver point j). When whether a ray is
@@ -500,7 +501,7 @@ Refiner::Split Refiner::chooseSplit(const Link& link) const {
     // the receiver would leave every child link partly visible, each sending
     // the source's mean, lit and hidden parts alike. Such a boundary is split
     // one level below the area threshold: a strip 5 cm wide is otherwise
-    // left in elements 5 cm wide (Hierarchy::canSubdivideNearContact).
+    // left in elements 5 cm wide (Hierarchy::canSubdivide).
     if (link.rays == 16 && h_[link.source].isSurface() && h_[link.receiver].isSurface()) {
         const unsigned blocked = unsigned(link.blockedStatic | link.blockedDynamic);
         if (blocked != 0u && blocked != 0xFFFFu) {
@@ -511,8 +512,8 @@ Refiner::Split Refiner::chooseSplit(const Link& link) const {
                 acrossReceiver = acrossReceiver || (row != 0u && row != 0xFu);
                 acrossSource = acrossSource || (column != 0u && column != 0x1111u);
             }
-            if (acrossSource && !acrossReceiver && canSplit(link.source, true)) return Split::Source;
-            if (acrossReceiver && !acrossSource && canSplit(link.receiver, true)) return Split::Receiver;
+            if (acrossSource && !acrossReceiver && canSplit(link.source, 1)) return Split::Source;
+            if (acrossReceiver && !acrossSource && canSplit(link.receiver, 1)) return Split::Receiver;
         }
     }
     // Equal areas (with a little slack, so a scaled scene decides alike): the receiver.

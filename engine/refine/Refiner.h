@@ -144,14 +144,16 @@ private:
     static constexpr double kEstimatedWeight = 2.5;
     enum class Split { None, Source, Receiver, Both };
     Split chooseSplit(const Link& link) const;
-    bool canSplit(ElementId e, bool nearContact = false) const;
+    // `below`: levels below the area threshold allowed (Hierarchy::canSubdivide).
+    bool canSplit(ElementId e, int below = 0) const;
     // Two surfaces facing each other, nearly parallel, with a gap under a
     // tenth of their size (a door 2 mm before a wall, a box on a shelf):
     // the form factor's variation is judged at the receiver's corners too,
     // and the source may split one level below the area threshold.
     bool facingClose(ElementId s, ElementId r) const;
-    // The surface s emits and stands on r's plane, across it (a lamp's side
-    // on its wall): r may split one level below the area threshold.
+    // The surface s emits and stands on r's plane, across it, or close to it
+    // (a lamp's side on its wall, a strip under a cupboard 2 cm from the
+    // wall): r may split two levels below the area threshold.
     bool litAlongBy(ElementId s, ElementId r) const;
     // Whether a link from a close facing source must reach the receiver's
     // children (see the .cpp): it is refined whatever its own transfer.

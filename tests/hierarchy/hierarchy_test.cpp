@@ -318,27 +318,29 @@ TEST(Hierarchy, SubdivisionStopsWhereFloatCornersStayExact) {
 }
 
 // Children keep at least the area threshold, except near a contact
-// (Refiner::chooseSplit), where they may go one level further: a unit
-// square at a threshold of 1/16 splits twice, and near a contact three
-// times.
-TEST(Hierarchy, SubdivisionKeepsTheAreaThresholdAndOneLevelMoreNearAContact) {
+// (Refiner::chooseSplit), where they may go one level further, and along an
+// emitter, two: a unit square at a threshold of 1/16 splits twice, near a
+// contact three times and along an emitter four.
+TEST(Hierarchy, SubdivisionKeepsTheAreaThresholdAndOneOrTwoLevelsMoreNearAContact) {
     using V = glm::dvec3;
     Scene s;
     const auto m = test::addMaterial(s, V(0.5), V(0.0));
     test::addQuadObject(s, "quad", m, {{V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)}});
     Hierarchy h(s, 1.0 / 16.0);
     ElementId e = h.polygonElement(0);
-    std::vector<bool> normal, nearContact;
-    for (int depth = 0; depth < 5 && h.canSubdivideNearContact(e); ++depth) {
+    std::vector<bool> normal, nearContact, alongEmitter;
+    for (int depth = 0; depth < 6 && h.canSubdivide(e, 2); ++depth) {
         normal.push_back(h.canSubdivide(e));
-        nearContact.push_back(h.canSubdivideNearContact(e));
+        nearContact.push_back(h.canSubdivide(e, 1));
+        alongEmitter.push_back(h.canSubdivide(e, 2));
         h.subdivide(e);
         e = h[e].children[0];
     }
-    EXPECT_EQ(normal, (std::vector<bool>{true, true, false}));
-    EXPECT_EQ(nearContact, (std::vector<bool>{true, true, true}));
-    EXPECT_FALSE(h.canSubdivideNearContact(e));
-    EXPECT_DOUBLE_EQ(h[e].area, 1.0 / 64.0);
+    EXPECT_EQ(normal, (std::vector<bool>{true, true, false, false}));
+    EXPECT_EQ(nearContact, (std::vector<bool>{true, true, true, false}));
+    EXPECT_EQ(alongEmitter, (std::vector<bool>{true, true, true, true}));
+    EXPECT_FALSE(h.canSubdivide(e, 2));
+    EXPECT_DOUBLE_EQ(h[e].area, 1.0 / 256.0);
 }
 
 }  // namespace
