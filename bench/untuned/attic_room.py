@@ -7,7 +7,7 @@ degrees, a round table (a 16-sided prism) and a chest under the low side.
     python3 bench/untuned/attic_room.py OUT.gltf [--fix]"""
 import json, math, sys
 sys.path.insert(0, __import__('os').path.dirname(__import__('os').path.abspath(__file__)))
-from gltf_writer import material, add_mesh, box, buffers, meshes, accessors, views
+from gltf_writer import material, add_mesh, box, buffers, meshes, accessors, quad, views
 materials = [
  material("plaster", [0.78, 0.76, 0.72]),
  material("wood", [0.5, 0.34, 0.2]),
@@ -18,7 +18,6 @@ materials = [
  material("blue", [0.2, 0.3, 0.55]),
 ]
 W, D, Hlow, Hridge = 6.0, 4.0, 1.0, 3.2   # x: 0..W, z: 0..D, ridge along x at z = D/2
-def quad(a, b, c, d): return [a, b, c, d]
 zr = D / 2
 shell = []
 shell.append(quad((0, 0, 0), (W, 0, 0), (W, 0, D), (0, 0, D))[::-1])            # floor faces up

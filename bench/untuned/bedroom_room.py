@@ -10,7 +10,7 @@ import json
 import math
 import sys
 
-from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, views
+from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, quad, views
 
 materials = [
     material("plaster", (0.78, 0.76, 0.72)),
@@ -24,10 +24,6 @@ materials = [
     material("rug-blue", (0.2, 0.25, 0.45)),
 ]
 W, D, H = 4.0, 3.6, 2.5
-
-
-def quad(a, b, c, d):
-    return [a, b, c, d]
 
 
 floor = add_mesh("floor", [quad((0, 0, 0), (0, 0, D), (W, 0, D), (W, 0, 0))], 1)

@@ -32,6 +32,9 @@ def box(x0,y0,z0,x1,y1,z1,inward=False):
        [(x0,y0,z0),(x1,y0,z0),(x1,y0,z1),(x0,y0,z1)],[(x0,y1,z0),(x0,y1,z1),(x1,y1,z1),(x1,y1,z0)],
        [(x0,y0,z0),(x0,y1,z0),(x1,y1,z0),(x1,y0,z0)],[(x0,y0,z1),(x1,y0,z1),(x1,y1,z1),(x0,y1,z1)]]
     return [list(reversed(q)) for q in f] if inward else f
+def quad(a, b, c, d):
+    """A quad's corners, counter-clockwise seen from its front."""
+    return [a, b, c, d]
 def material(name, colour, glow=None, strength=None):
     """A glTF material of base colour `colour` (RGB); glowing `glow` (RGB) times `strength` when given."""
     m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": list(colour) + [1]}}

@@ -10,7 +10,7 @@ recess in the back wall with a deep sill. The camera looks from the doorway towa
 import json
 import sys
 
-from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, views
+from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, quad, views
 
 materials = [
     material("plaster", (0.75, 0.74, 0.7)),
@@ -23,10 +23,6 @@ materials = [
     material("strip", (0.8, 0.8, 0.8), (1.0, 0.92, 0.8), 25.0),
 ]
 W, D, H = 4.5, 3.6, 2.6
-
-
-def quad(a, b, c, d):
-    return [a, b, c, d]
 
 
 # The shell, facing inward; the back wall z = 0 has a window recess (x 2.9..3.9, y 1.2..2.1,

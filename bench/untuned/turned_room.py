@@ -12,7 +12,7 @@ import json
 import math
 import sys
 
-from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, views
+from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, quad, views
 
 materials = [
     material("plaster", (0.72, 0.70, 0.66)),
@@ -24,10 +24,6 @@ materials = [
     material("box-red", (0.6, 0.15, 0.1)),
 ]
 H = 2.8
-
-
-def quad(a, b, c, d):
-    return [a, b, c, d]
 
 
 # The shell of the L: main room x in [0, 6], z in [0, 3]; the wing x in [3, 6], z in [3, 5.5].

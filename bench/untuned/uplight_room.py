@@ -10,7 +10,7 @@ camera looks from the front wall toward the mezzanine.
 import json
 import sys
 
-from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, views
+from gltf_writer import accessors, add_mesh, box, buffers, material, meshes, quad, views
 
 materials = [
     material("ceiling-white", (0.85, 0.85, 0.83)),
@@ -24,10 +24,6 @@ materials = [
     material("uplight", (0.8, 0.8, 0.8), (1.0, 0.9, 0.75), 12.0),
 ]
 W, D, H = 6.0, 4.5, 4.2
-
-
-def quad(a, b, c, d):
-    return [a, b, c, d]
 
 
 # The shell, facing inward: floor, ceiling, three warm walls and a red one at x = W.
