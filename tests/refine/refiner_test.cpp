@@ -166,7 +166,8 @@ TEST(Refiner, AnEmitterStandingOnTheReceiverSplitsItBelowTheAreaThreshold) {
 // elements twice that drew it (an untuned kitchen's image 18.6% from Cycles,
 // 5.2% with two; bench/untuned/kitchen_room.py).
 TEST(Refiner, AnEmitterStandingOnTheReceiverSplitsItTwoLevelsBelowTheAreaThreshold) {
-    Refining r(panelOnFloor(0.0, 10.0), 0.5);
+    const Scene scene = panelOnFloor(0.0, 10.0);  // the hierarchy keeps a reference to it
+    Refining r(scene, 0.5);
     const ElementId panel = r.h.polygonElement(0), floor = r.h.polygonElement(1);
     r.h[panel].oracle = float(luminance(r.h[panel].emission));
     EXPECT_TRUE(r.refiner.wouldRefine(r.refiner.compute(panel, floor)));
