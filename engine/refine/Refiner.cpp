@@ -464,7 +464,9 @@ bool Refiner::facingClose(ElementId s, ElementId r) const {
 bool Refiner::litAlongBy(ElementId s, ElementId r) const {
     const HElement& a = h_[s];
     const HElement& b = h_[r];
-    if (!a.isSurface() || !b.isSurface() || !(luminance(a.emission) > 0.0)) return false;
+    // A receiver that glows itself (the faces of a glowing box, a furnace)
+    // is not lit along: its own light does not fall off from the line.
+    if (!a.isSurface() || !b.isSurface() || !(luminance(a.emission) > 0.0) || luminance(b.emission) > 0.0) return false;
     if (std::abs(glm::dot(a.normal, b.normal)) > 0.1) return false;
     const double gap = std::abs(glm::dot(b.normal, a.center - b.center));
     return gap < 1.01 * radius(h_.box(s));

@@ -153,7 +153,8 @@ private:
     bool facingClose(ElementId s, ElementId r) const;
     // The surface s emits and stands on r's plane, across it, or close to it
     // (a lamp's side on its wall, a strip under a cupboard 2 cm from the
-    // wall): r may split two levels below the area threshold.
+    // wall), and r does not glow itself: r may split two levels below the
+    // area threshold.
     bool litAlongBy(ElementId s, ElementId r) const;
     // Whether a link from a close facing source must reach the receiver's
     // children (see the .cpp): it is refined whatever its own transfer.

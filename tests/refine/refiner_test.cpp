@@ -130,11 +130,11 @@ TEST(Refiner, SurfacesThatSeeEachOtherOnlyBetweenTheirPointsAreJudgedByTheirFaci
 // it (a lamp's side on the wall it hangs on): its light falls off steeply
 // from where they meet, and the floor splits one level below the threshold.
 // Lifted 20 cm off the floor, or dark, it leaves the floor whole.
-Scene panelOnFloor(double lift, double emission) {
+Scene panelOnFloor(double lift, double emission, double floorEmission = 0.0) {
     Scene s;
     s.sourcePath = "panel-on-floor";
     const auto panel = test::addMaterial(s, V(0.5), V(emission), "panel");
-    const auto grey = test::addMaterial(s, V(0.5), V(0.0), "grey");
+    const auto grey = test::addMaterial(s, V(0.5), V(floorEmission), "grey");
     // In the plane x = 0.5, facing +x.
     test::addQuadObject(s, "panel", panel,
                         {{V(0.5, lift, 0.3), V(0.5, lift + 0.3, 0.3), V(0.5, lift + 0.3, 0.7), V(0.5, lift, 0.7)}});
@@ -154,6 +154,8 @@ TEST(Refiner, AnEmitterStandingOnTheReceiverSplitsItBelowTheAreaThreshold) {
     EXPECT_TRUE(wouldSplitFloor(panelOnFloor(0.0, 10.0)));
     EXPECT_FALSE(wouldSplitFloor(panelOnFloor(0.2, 10.0)));
     EXPECT_FALSE(wouldSplitFloor(panelOnFloor(0.0, 0.0)));
+    // A floor that glows itself (a furnace's faces meet so) keeps the threshold.
+    EXPECT_FALSE(wouldSplitFloor(panelOnFloor(0.0, 10.0, 10.0)));
     const Split split = refineOnce(panelOnFloor(0.0, 10.0), 0.5);
     EXPECT_TRUE(split.receiver);
 }
