@@ -58,6 +58,34 @@ std::string reflectanceCause(const Scene& scene) {
     return out.str();
 }
 
+// The objects that take most of `perObject` (the largest first, at most
+// three, each at least a tenth of the whole), as ", N% of it <where> 'name'"
+// phrases joined by "and", and the whole.
+struct Shares {
+    double total = 0.0;
+    std::string phrase;
+    std::vector<std::string> objects;
+};
+Shares largestShares(const Scene& scene, const std::vector<double>& perObject, const char* where) {
+    Shares out;
+    std::vector<std::pair<double, std::uint32_t>> by;
+    for (std::uint32_t o = 0; o < perObject.size() && o < scene.objects.size(); ++o)
+        if (perObject[o] > 0.0) {
+            by.emplace_back(perObject[o], o);
+            out.total += perObject[o];
+        }
+    std::sort(by.begin(), by.end(), std::greater<>());
+    std::ostringstream m;
+    for (const auto& [power, o] : by) {
+        if (out.objects.size() == 3 || power < 0.1 * out.total) break;
+        m << (out.objects.empty() ? ", " : " and ") << std::lround(100.0 * power / out.total) << "% of it " << where
+          << " '" << scene.objects[o].name << "'";
+        out.objects.push_back(scene.objects[o].name);
+    }
+    out.phrase = m.str();
+    return out;
+}
+
 }  // namespace
 
 std::string diagnoseFailure(const Scene& scene, const Hierarchy& h, const Solver& solver,
@@ -116,52 +144,24 @@ std::vector<Warning> guardWarnings(const Scene& scene, const Solver& solver, dou
 std::vector<Warning> backFaceWarnings(const Scene& scene, const EnergyBalance& energy, double threshold) {
     // What the objects' backs take (not light that goes into the surface a
     // punctual light sits on).
-    double onBacks = 0.0;
-    std::vector<std::pair<double, std::uint32_t>> by;
-    for (std::uint32_t o = 0; o < energy.backFacesByObject.size() && o < scene.objects.size(); ++o)
-        if (energy.backFacesByObject[o] > 0.0) {
-            by.emplace_back(energy.backFacesByObject[o], o);
-            onBacks += energy.backFacesByObject[o];
-        }
-    if (!(energy.emitted > 0.0) || !(onBacks > threshold * energy.emitted)) return {};
-    std::sort(by.begin(), by.end(), std::greater<>());
-    const double share = onBacks / energy.emitted;
+    const Shares backs = largestShares(scene, energy.backFacesByObject, "at");
+    if (!(energy.emitted > 0.0) || !(backs.total > threshold * energy.emitted)) return {};
+    const double share = backs.total / energy.emitted;
     std::ostringstream m;
-    m << std::lround(100.0 * share) << "% of the emitted light meets the back of one-sided polygons";
-    std::vector<std::string> objects;
-    for (const auto& [power, o] : by) {
-        if (objects.size() == 3 || power < 0.1 * onBacks) break;
-        m << (objects.empty() ? ", " : " and ") << std::lround(100.0 * power / onBacks) << "% of it at '"
-          << scene.objects[o].name << "'";
-        objects.push_back(scene.objects[o].name);
-    }
-    m << ": " << (objects.size() == 1 ? "are its normals" : "are their normals")
+    m << std::lround(100.0 * share) << "% of the emitted light meets the back of one-sided polygons" << backs.phrase
+      << ": " << (backs.objects.size() == 1 ? "are its normals" : "are their normals")
       << " flipped? (a doubleSided material lights both sides)";
-    return {{"back_faces", m.str(), objects, share}};
+    return {{"back_faces", m.str(), backs.objects, share}};
 }
 
 std::vector<Warning> escapingLightWarnings(const Scene& scene, const EnergyBalance& energy, double threshold) {
-    double escaping = 0.0;
-    std::vector<std::pair<double, std::uint32_t>> by;
-    for (std::uint32_t o = 0; o < energy.escapedEmissionByObject.size() && o < scene.objects.size(); ++o)
-        if (energy.escapedEmissionByObject[o] > 0.0) {
-            by.emplace_back(energy.escapedEmissionByObject[o], o);
-            escaping += energy.escapedEmissionByObject[o];
-        }
-    if (!(energy.emitted > 0.0) || !(escaping > threshold * energy.emitted)) return {};
-    std::sort(by.begin(), by.end(), std::greater<>());
-    const double share = escaping / energy.emitted;
+    const Shares leaving = largestShares(scene, energy.escapedEmissionByObject, "from");
+    if (!(energy.emitted > 0.0) || !(leaving.total > threshold * energy.emitted)) return {};
+    const double share = leaving.total / energy.emitted;
     std::ostringstream m;
-    m << std::lround(100.0 * share) << "% of the emitted light leaves the scene straight from glowing faces";
-    std::vector<std::string> objects;
-    for (const auto& [power, o] : by) {
-        if (objects.size() == 3 || power < 0.1 * escaping) break;
-        m << (objects.empty() ? ", " : " and ") << std::lround(100.0 * power / escaping) << "% of it from '"
-          << scene.objects[o].name << "'";
-        objects.push_back(scene.objects[o].name);
-    }
-    m << ": does a face look out of the scene (flush with a wall or ceiling, facing away)? It lights nothing";
-    return {{"light_leaves", m.str(), objects, share}};
+    m << std::lround(100.0 * share) << "% of the emitted light leaves the scene straight from glowing faces"
+      << leaving.phrase << ": does a face look out of the scene (flush with a wall or ceiling, facing away)? It lights nothing";
+    return {{"light_leaves", m.str(), leaving.objects, share}};
 }
 
 std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double threshold) {
