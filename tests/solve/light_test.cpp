@@ -29,12 +29,6 @@ TEST(Light, FurnaceSeriesAtDefaultSettings) {
     for (double rho : {0.5, 0.9, 0.99}) {
         EngineSettings settings;
         settings.solve.maxIterations = 20000;
-        // Refinement judges transfer against the emitted power, so a furnace
-        // refines about 1 / (1 - rho) times finer (README, "Known limits"):
-        // at the default epsilon 0.99 takes 4.4 million links and 85% of the
-        // test's time (27 s under the sanitizers). At ten times the epsilon
-        // it is refined for its radiosity as 0.9 is at the default.
-        if (rho > 0.95) settings.epsilon *= 10.0;
         Engine engine(test::closedBox(rho), settings);
         const SolveStats& st = engine.solve();
         const double expected = 1.0 / (1.0 - rho);
