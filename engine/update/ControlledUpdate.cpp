@@ -24,6 +24,7 @@
 
 #include "refine/Refiner.h"
 #include "update/LineSpaceUpdate.h"
+#include "update/Timing.h"
 
 namespace rad {
 

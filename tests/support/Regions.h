@@ -13,7 +13,7 @@ namespace rad::test {
 // The luminance of the object's area-weighted mean radiosity.
 inline double objectLuminance(const Engine& engine, const std::string& name) {
     for (const ObjectRadiosity& o : engine.objectRadiosity())
-        if (o.name == name) return luminance(o.radiosity);
+        if (o.name == name) return rad::luminance(o.radiosity);
     ADD_FAILURE() << "no object " << name;
     return 0.0;
 }
@@ -23,7 +23,7 @@ inline double regionLuminance(const Engine& engine, const std::string& prefix) {
     double sum = 0.0, area = 0.0;
     for (const ObjectRadiosity& o : engine.objectRadiosity())
         if (o.name.rfind(prefix, 0) == 0) {
-            sum += o.area * luminance(o.radiosity);
+            sum += o.area * rad::luminance(o.radiosity);
             area += o.area;
         }
     return area > 0.0 ? sum / area : 0.0;
@@ -43,7 +43,7 @@ double drawnLuminance(const Engine& engine, const Inside& inside) {
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t i = m.indices[t + k];
             q[k] = glm::dvec3(m.positions[i]) + m.origin;
-            l += luminance(glm::dvec3(m.colors[i])) / 3.0;
+            l += rad::luminance(glm::dvec3(m.colors[i])) / 3.0;
         }
         const double a = 0.5 * glm::length(glm::cross(q[1] - q[0], q[2] - q[0]));
         if (a > 0.0 && inside((q[0] + q[1] + q[2]) / 3.0)) {
@@ -62,7 +62,7 @@ inline void expectDarkBeside(const Engine& engine, const std::string& prefix,
     ASSERT_GT(reference, 0.0) << lit;
     for (const ObjectRadiosity& o : engine.objectRadiosity())
         if (o.name.rfind(prefix, 0) == 0) {
-            EXPECT_LT(luminance(o.radiosity), fraction * reference) << o.name;
+            EXPECT_LT(rad::luminance(o.radiosity), fraction * reference) << o.name;
         }
 }
 
