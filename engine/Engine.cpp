@@ -17,6 +17,7 @@
 #include "lights/LightLinks.h"
 #include "links/Link.h"
 #include "refine/Refiner.h"
+#include "refine/ReceiverLight.h"
 #include "refine/Surroundings.h"
 #include "snapshot/Sampling.h"
 #include "solve/Closure.h"
@@ -641,6 +642,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     s.finding.clear();
     s.updater.abandonTraversal();
     s.catchUpFirst = false;
+    s.refiner.setReceiverScales({});
     s.refiner.linkRoot();
     // Punctual lights reach the surfaces through light links, refined once:
     // the light a point gets from them does not depend on the solution.
@@ -697,7 +699,16 @@ const SolveStats& Engine::solve(const Progress& progress) {
             clock.report(line.str());
         }
         if (r.status != SolveResult::Status::Converged) break;
-        if (lastRound) break;
+        // After the first round the light is where it goes: polygons it
+        // reaches little are refined finer for what they get (the scales
+        // fixed from then on), and at least one round follows to do it.
+        bool rescaled = false;
+        if (round == 1 && s.settings.localThresholds) {
+            std::vector<float> scales = receiverLightScales(s.scene, s.hierarchy);
+            rescaled = std::any_of(scales.begin(), scales.end(), [](float v) { return v < 1.0f; });
+            s.refiner.setReceiverScales(std::move(scales));
+        }
+        if (lastRound && !rescaled) break;
         if (round == s.settings.maxRefineRounds) st.message = "stopped refining after the round limit";
     }
     // Refinement made under an earlier round's radiosity that the final one

@@ -248,7 +248,13 @@ bool Refiner::refinesAtAnyVisibility(const Link& link) const {
     if (!admissible(link.source, link.receiver)) return true;
     // wouldRefine's bound is at least this for a cluster end, whatever v.
     const bool clusterEnd = !h_[link.source].isSurface() || !h_[link.receiver].isSurface();
-    return clusterEnd && kEstimatedWeight * potentialTransfer(link) > settings_.epsilon * settings_.referencePower * (1.0 + 1e-9);
+    return clusterEnd && kEstimatedWeight * potentialTransfer(link) > threshold(link) * (1.0 + 1e-9);
+}
+
+double Refiner::threshold(const Link& link) const {
+    const double t = settings_.epsilon * settings_.referencePower;
+    const HElement& r = h_[link.receiver];
+    return receiverScales_.empty() || !r.isSurface() ? t : t * receiverScales_[r.polygon];
 }
 
 Link Refiner::computeUnoccluded(ElementId s, ElementId r) const {
@@ -482,7 +488,7 @@ bool Refiner::litAlongBy(ElementId s, ElementId r) const {
 bool Refiner::goesToChildren(const Link& link) const {
     const HElement& r = h_[link.receiver];
     return !r.children.empty() && r.isSurface() && facingClose(link.source, link.receiver) &&
-           r.oracle * coupling(link, link.unoccluded) > settings_.epsilon * settings_.referencePower;
+           r.oracle * coupling(link, link.unoccluded) > threshold(link);
 }
 
 Refiner::Split Refiner::chooseSplit(const Link& link) const {
@@ -551,7 +557,7 @@ bool Refiner::wouldRefine(const Link& link) const {
                                            bright * coupling(link, double(link.spread)));
     // A little slack: symmetric scenes put many links exactly on the threshold,
     // and the same scene at another scale must not fall on the other side.
-    return bound > settings_.epsilon * settings_.referencePower * (1.0 + 1e-9);
+    return bound > threshold(link) * (1.0 + 1e-9);
 }
 
 std::size_t Refiner::childCount(const Link& link) const {

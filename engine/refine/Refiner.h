@@ -117,6 +117,9 @@ public:
     void refine(const std::vector<LinkId>& ids, std::vector<LinkId>& created, bool deferRays = false);
 
     bool capReached() const { return capReached_; }
+    // Per input polygon, the scale of the threshold for the links it
+    // receives (refine/ReceiverLight.h); empty: 1 for all.
+    void setReceiverScales(std::vector<float> scales) { receiverScales_ = std::move(scales); }
     // The active links: every receiver's list summed, kept as they come and
     // go (a frame's figures read it; summing the lists took 2.2 ms a frame
     // on the building floor).
@@ -142,6 +145,10 @@ private:
     // so that the measured error against path-traced references is about the
     // same for both kinds at the default epsilon (README, "Accuracy").
     static constexpr double kEstimatedWeight = 2.5;
+    // What a link's transfer is compared with: epsilon times the reference
+    // power, times its receiver's scale (a surface's polygon; 1 for a
+    // cluster).
+    double threshold(const Link& link) const;
     enum class Split { None, Source, Receiver, Both };
     Split chooseSplit(const Link& link) const;
     // `below`: levels below the area threshold allowed (Hierarchy::canSubdivide).
@@ -187,6 +194,7 @@ private:
     const RayCaster& rays_;
     RefineSettings settings_;
     bool capReached_ = false;
+    std::vector<float> receiverScales_;
     std::size_t activeLinks_ = 0;
     std::vector<ElementId> dirty_;
     std::vector<ElementId> unordered_;  // elements whose lists were appended to

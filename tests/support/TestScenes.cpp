@@ -161,6 +161,42 @@ Scene doorwayScene(bool doorDynamic, DoorPlacement placement) {
     return s;
 }
 
+Scene roomsThroughAnOpening() {
+    using V = glm::dvec3;
+    Scene s;
+    s.sourcePath = "rooms-through-an-opening";
+    const auto white = addMaterial(s, V(0.85), V(0.0), "white");
+    const auto floor = addMaterial(s, V(0.5), V(0.0), "floor");
+    const auto light = addMaterial(s, V(0.0), V(10.0), "light");
+    // A wall in the plane z = c, 4 x 2.6 m, with the opening x 1.6..2.4,
+    // y 1.6..2.2, facing +z or -z.
+    const auto wallWithOpening = [](double c, bool positive) {
+        return std::vector<Quad>{rectangle(2, c, 0, 4, 0, 1.6, positive), rectangle(2, c, 0, 4, 2.2, 2.6, positive),
+                                 rectangle(2, c, 0, 1.6, 1.6, 2.2, positive),
+                                 rectangle(2, c, 2.4, 4, 1.6, 2.2, positive)};
+    };
+    // The lit room: z from 0 to 4.
+    addQuadObject(s, "lit-floor", floor, {rectangle(1, 0.0, 0, 4, 0, 4, true)});
+    std::vector<Quad> lit = {rectangle(1, 2.6, 0, 4, 0, 4, false), rectangle(0, 0.0, 0, 2.6, 0, 4, true),
+                             rectangle(0, 4.0, 0, 2.6, 0, 4, false), rectangle(2, 0.0, 0, 4, 0, 2.6, true)};
+    for (const Quad& q : wallWithOpening(4.0, false)) lit.push_back(q);
+    addQuadObject(s, "lit-walls", white, lit);
+    addQuadObject(s, "light", light, {rectangle(1, 2.59, 1.2, 2.8, 1.2, 2.8, false)});
+    // The opening's reveal through the wall (z from 4 to 4.2).
+    addQuadObject(s, "reveal", white,
+                  {rectangle(1, 1.6, 1.6, 2.4, 4.0, 4.2, true), rectangle(1, 2.2, 1.6, 2.4, 4.0, 4.2, false),
+                   rectangle(0, 1.6, 1.6, 2.2, 4.0, 4.2, true), rectangle(0, 2.4, 1.6, 2.2, 4.0, 4.2, false)});
+    // The dark room: z from 4.2 to 8.2.
+    addQuadObject(s, "dark-floor", floor, {rectangle(1, 0.0, 0, 4, 4.2, 8.2, true)});
+    addQuadObject(s, "dark-ceiling", white, {rectangle(1, 2.6, 0, 4, 4.2, 8.2, false)});
+    std::vector<Quad> dark = {rectangle(0, 0.0, 0, 2.6, 4.2, 8.2, true), rectangle(0, 4.0, 0, 2.6, 4.2, 8.2, false),
+                              rectangle(2, 8.2, 0, 4, 0, 2.6, false)};
+    for (const Quad& q : wallWithOpening(4.2, true)) dark.push_back(q);
+    addQuadObject(s, "dark-walls", white, dark);
+    addQuadObject(s, "dark-block", white, boxFaces(V(2.5, 0.0, 6.0), V(3.3, 0.8, 6.8), false));
+    return s;
+}
+
 std::string sourcePath(const std::string& relative) { return std::string(RADIOSITY_SOURCE_DIR) + "/" + relative; }
 
 Scene office() { return loadGltf(sourcePath("scenes/office.gltf")); }

@@ -51,6 +51,11 @@ Scene roomWithBlock(double scale = 1.0, glm::dvec3 blockOffset = glm::dvec3(0.0)
 enum class DoorPlacement { GapInFront, AgainstTheWall, InTheReveal, GapBehind };
 Scene doorwayScene(bool doorDynamic = true, DoorPlacement placement = DoorPlacement::GapInFront);
 glm::dvec3 doorHinge();
+// Two closed rooms, 4 x 2.6 x 4 m, white (reflectance 0.85), joined by an
+// opening of 0.8 x 0.6 m high in the 20 cm wall between them: "lit-" under a
+// ceiling panel, "dark-" (a block on its floor) lit only through the
+// opening, about a hundredth as brightly.
+Scene roomsThroughAnOpening();
 
 std::string sourcePath(const std::string& relative);
 // The shipped scenes the tests use.

@@ -1,0 +1,36 @@
+#pragma once
+// Thresholds relative to the light a receiver gets. BF refinement compares a
+// link's transfer with epsilon times the emitted power, so a region lit a
+// hundredth as brightly as the rest is refined a hundred times more coarsely
+// for its own light: a storey lit only through a stair opening read 42.7%
+// from a path tracer (README, "Accuracy against ground truth"). After the
+// first refinement round, a polygon whose reflected light is under
+// 1 / kDarkRatio of the scene's mean gets a finer threshold for the links it
+// receives: kDarkRatio times its light over the mean, rounded to a power of
+// two, at least kFinestScale. Where the light is sent matters as much (the
+// bright storey's links into the dark one), and those links have dark
+// receivers too; refining dark sources among themselves helped little
+// (measured in the README).
+//
+// The scales are fixed from then on: moves and edits keep them, so that a
+// scene moved back to where it was solved is refined as it was, and rounding
+// to powers of two keeps a from-scratch solve of a moved scene at the same
+// scales but where a polygon's light changed by more than a factor of 1.4.
+
+#include <vector>
+
+#include "hierarchy/Hierarchy.h"
+#include "radiosity/Scene.h"
+
+namespace rad {
+
+inline constexpr double kDarkRatio = 4.0;
+inline constexpr double kFinestScale = 0.25;
+
+// One scale per input polygon, in [kFinestScale, 1], from the radiosity of
+// its leaves (B - E, luminance, by area) against the area mean over the
+// polygons that do not glow. Glowing polygons, and every polygon of a scene
+// that reflects nothing, keep 1.
+std::vector<float> receiverLightScales(const Scene& scene, const Hierarchy& hierarchy);
+
+}  // namespace rad
