@@ -1,7 +1,8 @@
 // Thresholds relative to the light a receiver gets (refine/ReceiverLight.h):
 // a room lit only through an opening is refined for its own light, and comes
-// closer to a solve at an eighth of the epsilon than with the scene's
-// threshold alone.
+// closer to a solve at a quarter of the epsilon than with the scene's
+// threshold alone. (At four times the default epsilon the scales did not
+// help here: 5.7% against 5.4%.)
 
 #include "refine/ReceiverLight.h"
 
@@ -23,7 +24,7 @@ TEST(ReceiverLight, ARoomLitThroughAnOpeningIsRefinedForItsOwnLight) {
     EngineSettings whole = scaled;
     whole.localThresholds = false;  // no receiver scales, the scene's threshold for all
     EngineSettings fine = scaled;
-    fine.epsilon /= 8.0;
+    fine.epsilon /= 4.0;
     Engine a(test::roomsThroughAnOpening(), scaled), b(test::roomsThroughAnOpening(), whole), reference(test::roomsThroughAnOpening(), fine);
     ASSERT_TRUE(a.solve().converged);
     ASSERT_TRUE(b.solve().converged);
@@ -45,8 +46,8 @@ TEST(ReceiverLight, ARoomLitThroughAnOpeningIsRefinedForItsOwnLight) {
     for (const char* name : {"lit-floor", "lit-walls"})
         EXPECT_NEAR(test::objectLuminance(a, name), test::objectLuminance(b, name), 2e-3 * test::objectLuminance(b, name))
             << name;
-    // The dark room as a whole: 5.8% under the finer solve with the scene's
-    // threshold, 2.4% with its own (measured).
+    // The dark room as a whole: 5.5% under the finer solve with the scene's
+    // threshold, 2.0% with its own (measured).
     const double r = test::regionLuminance(reference, "dark-");
     const double scaledError = test::regionLuminance(a, "dark-") / r - 1.0;
     const double wholeError = test::regionLuminance(b, "dark-") / r - 1.0;
