@@ -13,9 +13,10 @@
 // (measured in the README).
 //
 // The scales are fixed from then on: moves and edits keep them, so that a
-// scene moved back to where it was solved is refined as it was, and rounding
-// to powers of two keeps a from-scratch solve of a moved scene at the same
-// scales but where a polygon's light changed by more than a factor of 1.4.
+// scene moved back to where it was solved is refined as it was. Rounding to
+// powers of two keeps most polygons at the same scale in a from-scratch
+// solve of a moved scene: only a polygon whose light crosses a rounding
+// boundary changes its scale.
 
 #include <vector>
 
