@@ -77,6 +77,10 @@ struct HElement {
     // cluster is pushed (solve/ClusterTransfer.h), so it stores neither.
     glm::dvec3 irradiance{0.0};
     double formFactorSum = 0.0;
+    // Of those, the part on links from clusters (an estimate, which gives
+    // way first under the energy guard: Solver::arriving).
+    glm::dvec3 clusterIrradiance{0.0};
+    double clusterSum = 0.0;
     // Surfaces: how much of the element's view its own links and those below
     // it cover, on average over its area (formFactorSum plus the area-mean
     // coverage of its children). The push of irradiance to children uses it

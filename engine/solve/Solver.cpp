@@ -19,18 +19,25 @@ void Solver::gatherAll() {
     const SourceStates states(h_);
     tbb::parallel_for(ElementId(0), static_cast<ElementId>(h_.size()), [&](ElementId id) {
         HElement& e = h_[id];
-        glm::dvec3 irradiance(0.0);
-        double sum = 0.0;
+        glm::dvec3 irradiance(0.0), fromClusters(0.0);
+        double sum = 0.0, clusterSum = 0.0;
         for (std::size_t k = 0; k < e.links.size(); ++k) {
             links_.prefetchAhead(e.links, k);
             Link& link = links_[e.links[k]];
             link.gathered = link.formFactor();
             if (!e.isSurface()) continue;  // a cluster's arrivals are resolved when it is pushed
-            irradiance += double(link.gathered) * states.sent(link, e.center);
+            const glm::dvec3 arrives = double(link.gathered) * states.sent(link, e.center);
+            irradiance += arrives;
             sum += link.gathered;
+            if (!h_[link.source].isSurface()) {
+                fromClusters += arrives;
+                clusterSum += link.gathered;
+            }
         }
         e.irradiance = irradiance;
         e.formFactorSum = sum;
+        e.clusterIrradiance = fromClusters;
+        e.clusterSum = clusterSum;
         e.stale = false;
     });
     tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(h_.polygonCount()),
@@ -52,14 +59,17 @@ double Solver::meanUncovered(const HElement& e) const {
 Solver::Down Solver::shareOf(const Down& down, const HElement& child, double meanUncovered) {
     if (!(meanUncovered > 1e-6)) return down;
     const double w = (1.0 - std::min(1.0, child.coverage)) / meanUncovered;
-    return Down{w * down.irradiance, w * down.formFactorSum, down.direct};
+    return Down{w * down.irradiance, w * down.formFactorSum, w * down.clusterIrradiance, w * down.clusterSum,
+                down.direct};
 }
 
 Solver::Down Solver::surfaceDown(ElementId id, const Down& down) const {
     const HElement& e = h_[id];
     Down d = down;
-    d.irradiance += e.irradiance;
-    d.formFactorSum += e.formFactorSum;
+    d.irradiance += e.irradiance - e.clusterIrradiance;
+    d.formFactorSum += e.formFactorSum - e.clusterSum;
+    d.clusterIrradiance += e.clusterIrradiance;
+    d.clusterSum += e.clusterSum;
     d.direct += h_.direct(id);
     return d;
 }
@@ -98,7 +108,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
         ChildArrivals inherit(h_, id, arrivals);
         for (std::size_t i = 0; i < children.size(); ++i) {
             if (h_[children[i]].isSurface())
-                inherit.surface(surfaceDown[i].irradiance, surfaceDown[i].formFactorSum);
+                inherit.surface(surfaceDown[i].clusterIrradiance, surfaceDown[i].clusterSum);
             else
                 clusterDown[i] = inherit.cluster(children[i]);
         }
@@ -147,7 +157,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
             // A polygon's leaves come one after another.
             if (walk.polygons && (walk.polygons->empty() || walk.polygons->back() != e.polygon))
                 walk.polygons->push_back(e.polygon);
-            b = e.emission + e.reflectance * (arriving(here.irradiance, here.formFactorSum, e.polygon) + here.direct);
+            b = e.emission + e.reflectance * (arriving(here, e.polygon) + here.direct);
             if (b != e.radiosity) h_.touchMesh(e.polygon);
             walk.change += e.area * std::abs(luminance(b - e.radiosity));
             walk.total += e.area * std::abs(luminance(b));
@@ -357,8 +367,7 @@ SolveResult Solver::solve(const SolveSettings& settings,
     return result;
 }
 
-void Solver::forEachLeaf(
-    const std::function<void(const HElement&, const glm::dvec3&, double, const glm::dvec3&)>& f) const {
+void Solver::forEachLeaf(const std::function<void(const HElement&, const Down&)>& f) const {
     const std::function<void(ElementId, const Down&, const FacetArrivals&)> visit =
         [&](ElementId id, const Down& down, const FacetArrivals& facets) {
             const HElement& e = h_[id];
@@ -369,7 +378,7 @@ void Solver::forEachLeaf(
                 for (ElementId c : e.children) {
                     if (h_[c].isSurface()) {
                         Down d;
-                        inherit.surface(d.irradiance, d.formFactorSum);
+                        inherit.surface(d.clusterIrradiance, d.clusterSum);
                         visit(c, d, FacetArrivals{});
                     } else {
                         visit(c, Down{}, inherit.cluster(c));
@@ -379,7 +388,7 @@ void Solver::forEachLeaf(
             }
             const Down here = surfaceDown(id, down);
             if (e.isLeaf()) {
-                f(e, here.irradiance, here.formFactorSum, here.direct);
+                f(e, here);
                 return;
             }
             const double uncovered = meanUncovered(e);
@@ -391,10 +400,10 @@ void Solver::forEachLeaf(
 
 EnergyBalance Solver::energy() const {
     EnergyBalance balance;
-    forEachLeaf([&](const HElement& e, const glm::dvec3& irradiance, double sum, const glm::dvec3& direct) {
-        const glm::dvec3 filled = this->arriving(irradiance, sum, e.polygon);
-        balance.filled += e.area * std::max(0.0, luminance(filled - irradiance));
-        const glm::dvec3 arriving = filled + direct;
+    forEachLeaf([&](const HElement& e, const Down& d) {
+        const glm::dvec3 filled = this->arriving(d, e.polygon);
+        balance.filled += e.area * std::max(0.0, luminance(filled - d.totalIrradiance()));
+        const glm::dvec3 arriving = filled + d.direct;
         balance.emitted += e.area * luminance(e.emission);
         balance.received += e.area * luminance(arriving);
         balance.absorbed += e.area * luminance((glm::dvec3(1.0) - e.reflectance) * arriving);
@@ -405,7 +414,8 @@ EnergyBalance Solver::energy() const {
 
 std::vector<GuardAction> Solver::guardActions(double threshold) const {
     std::map<std::uint32_t, GuardAction> byObject;
-    forEachLeaf([&](const HElement& e, const glm::dvec3&, double sum, const glm::dvec3&) {
+    forEachLeaf([&](const HElement& e, const Down& d) {
+        const double sum = d.totalSum();
         if (!(sum > 1.0 + threshold)) return;
         GuardAction& a = byObject[e.object];
         a.object = e.object;

@@ -158,9 +158,10 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             }
             const Transfer& t = transfers[k];
             HElement& r = h_[t.receiver];
-            if (r.isSurface())
+            if (r.isSurface()) {
                 r.irradiance += t.irradiance;
-            else
+                if (!h_[t.source].isSurface()) r.clusterIrradiance += t.irradiance;
+            } else
                 addTransfer(h_, t.receiver, t.source, t.irradiance);
             if (r.dirty) continue;
             // The most the receiver's radiosity can move (a cluster's

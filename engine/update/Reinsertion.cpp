@@ -38,7 +38,7 @@ void unlinkSubtree(Hierarchy& h, LinkStore& links, Refiner& refiner, ElementId c
     while (!stack.empty()) {
         const ElementId e = stack.back();
         stack.pop_back();
-        h[e].irradiance = glm::dvec3(0.0);
+        h[e].irradiance = h[e].clusterIrradiance = glm::dvec3(0.0);
         for (ElementId c : h[e].children) stack.push_back(c);
     }
 }

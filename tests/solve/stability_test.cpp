@@ -209,8 +209,10 @@ TEST(Stability, FarFromTheOriginSolvesAsAtIt) {
             continue;
         }
         // The vertices round differently at each distance (doubles are 1e-10 m coarse 1000 km out),
-        // and a few refinement decisions with them: 5e-4 and 1.5e-3 apart in the runs measured.
-        const double within = 3e-3;
+        // and a few refinement decisions with them: 5e-4 and 1.5e-3 apart in the runs measured,
+        // 3.3e-3 on the shade since the energy guard cuts what clusters send before the surfaces'
+        // links (a link to the shade's inside refined or not is then treated apart).
+        const double within = 4e-3;
         ASSERT_EQ(objects.size(), base.size());
         for (std::size_t i = 0; i < objects.size(); ++i) {
             const double ref = luminance(base[i].radiosity);
