@@ -127,4 +127,27 @@ struct HElement {
     bool isSurface() const { return kind == ElementKind::Surface; }
 };
 
+// A surface element's sums over its own links, as they are gathered: the
+// irradiance and the form factors, and the part of each on links from
+// clusters (HElement::clusterIrradiance).
+struct LinkSums {
+    glm::dvec3 irradiance{0.0}, fromClusters{0.0};
+    double sum = 0.0, clusterSum = 0.0;
+
+    void add(const glm::dvec3& arriving, double formFactor, bool fromCluster) {
+        irradiance += arriving;
+        sum += formFactor;
+        if (fromCluster) {
+            fromClusters += arriving;
+            clusterSum += formFactor;
+        }
+    }
+    void storeIn(HElement& e) const {
+        e.irradiance = irradiance;
+        e.formFactorSum = sum;
+        e.clusterIrradiance = fromClusters;
+        e.clusterSum = clusterSum;
+    }
+};
+
 }  // namespace rad

@@ -413,25 +413,15 @@ std::vector<ElementId> Refiner::takeDirty() {
             h_.shape(out[i]).ownValid = false;  // summed from its links when pushed
             return;
         }
-        glm::dvec3 irradiance(0.0), fromClusters(0.0);
-        double sum = 0.0, clusterSum = 0.0;
+        LinkSums sums;
         const std::size_t n = e.links.size();
         for (std::size_t k = 0; k < n; ++k) {
             links_.prefetchAhead(e.links, k);
             const Link& l = links_[e.links[k]];
-            const glm::dvec3 arrives =
-                double(l.gathered) * (states ? states->sent(l, e.center) : sentRadiosity(h_, l));
-            irradiance += arrives;
-            sum += l.gathered;
-            if (!h_[l.source].isSurface()) {
-                fromClusters += arrives;
-                clusterSum += l.gathered;
-            }
+            sums.add(double(l.gathered) * (states ? states->sent(l, e.center) : sentRadiosity(h_, l)), l.gathered,
+                     !h_[l.source].isSurface());
         }
-        e.irradiance = irradiance;
-        e.formFactorSum = sum;
-        e.clusterIrradiance = fromClusters;
-        e.clusterSum = clusterSum;
+        sums.storeIn(e);
     });
     for (ElementId e : out) {
         if (h_[e].stale && h_[e].isSurface()) h_.refreshCoverage(e);

@@ -19,25 +19,15 @@ void Solver::gatherAll() {
     const SourceStates states(h_);
     tbb::parallel_for(ElementId(0), static_cast<ElementId>(h_.size()), [&](ElementId id) {
         HElement& e = h_[id];
-        glm::dvec3 irradiance(0.0), fromClusters(0.0);
-        double sum = 0.0, clusterSum = 0.0;
+        LinkSums sums;
         for (std::size_t k = 0; k < e.links.size(); ++k) {
             links_.prefetchAhead(e.links, k);
             Link& link = links_[e.links[k]];
             link.gathered = link.formFactor();
             if (!e.isSurface()) continue;  // a cluster's arrivals are resolved when it is pushed
-            const glm::dvec3 arrives = double(link.gathered) * states.sent(link, e.center);
-            irradiance += arrives;
-            sum += link.gathered;
-            if (!h_[link.source].isSurface()) {
-                fromClusters += arrives;
-                clusterSum += link.gathered;
-            }
+            sums.add(double(link.gathered) * states.sent(link, e.center), link.gathered, !h_[link.source].isSurface());
         }
-        e.irradiance = irradiance;
-        e.formFactorSum = sum;
-        e.clusterIrradiance = fromClusters;
-        e.clusterSum = clusterSum;
+        sums.storeIn(e);
         e.stale = false;
     });
     tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(h_.polygonCount()),
