@@ -74,6 +74,14 @@ public:
     // How many leaves a polygon's quadtree has (what meshing it writes),
     // kept through subdivision and removal.
     std::uint32_t polygonLeaves(std::uint32_t polygon) const { return polygonLeaves_[polygon]; }
+    // Appends the leaves under e to out, depth first, children in order.
+    void collectLeaves(ElementId e, std::vector<ElementId>& out) const {
+        if (elements_[e].isLeaf()) {
+            out.push_back(e);
+            return;
+        }
+        for (ElementId c : elements_[e].children) collectLeaves(c, out);
+    }
     // Which polygons' meshes may have changed since the snapshot last looked
     // (its leaves, their corners or their radiosity): set here by every
     // subdivision, removal and move, and by the solver for the leaves whose

@@ -8,17 +8,13 @@ namespace rad {
 std::vector<float> receiverLightScales(const Scene& scene, const Hierarchy& h) {
     const std::size_t n = h.polygonCount();
     std::vector<double> area(n, 0.0), light(n, 0.0);
-    std::vector<ElementId> stack;
+    std::vector<ElementId> leaves;
     for (std::uint32_t p = 0; p < n; ++p) {
         if (h.polygonElement(p) == kNone) continue;  // not meshed (buried, degenerate)
-        stack.assign(1, h.polygonElement(p));
-        while (!stack.empty()) {
-            const HElement& e = h[stack.back()];
-            stack.pop_back();
-            if (!e.isLeaf()) {
-                stack.insert(stack.end(), e.children.begin(), e.children.end());
-                continue;
-            }
+        leaves.clear();
+        h.collectLeaves(h.polygonElement(p), leaves);
+        for (ElementId id : leaves) {
+            const HElement& e = h[id];
             area[p] += e.area;
             light[p] += e.area * std::max(0.0, luminance(e.radiosity - e.emission));
         }

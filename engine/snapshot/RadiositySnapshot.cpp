@@ -32,14 +32,6 @@ struct Vertex {
     std::uint32_t leaf = 0;    // a corner's leaf, in the leaves' order
 };
 
-void collectLeaves(const Hierarchy& h, ElementId e, std::vector<ElementId>& out) {
-    if (h[e].isLeaf()) {
-        out.push_back(e);
-        return;
-    }
-    for (ElementId c : h[e].children) collectLeaves(h, c, out);
-}
-
 // What addPolygon works in, reused from polygon to polygon.
 struct Scratch {
     std::vector<ElementId> leaves;
@@ -89,7 +81,7 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, const glm
     }
     std::vector<ElementId>& leaves = scratch.leaves;
     leaves.clear();
-    collectLeaves(h, top, leaves);
+    h.collectLeaves(top, leaves);
     int maxDepth = 0;
     for (ElementId l : leaves) maxDepth = std::max<int>(maxDepth, h[l].depth);
     const double scale = std::ldexp(1.0, maxDepth);
@@ -386,7 +378,7 @@ void recolour(const Hierarchy& h, const std::vector<ElementId>& leaves, Snapshot
 std::pair<std::uint64_t, std::uint64_t> polygonSignature(const Hierarchy& h, ElementId top, std::uint32_t material,
                                                          std::vector<ElementId>& leaves) {
     leaves.clear();
-    collectLeaves(h, top, leaves);
+    h.collectLeaves(top, leaves);
     std::uint64_t shape = 0x9E3779B97F4A7C15ULL, light = shape;
     const auto add = [](std::uint64_t& hash, std::uint64_t word) {
         hash = (hash ^ word) * 0xBF58476D1CE4E5B9ULL;
