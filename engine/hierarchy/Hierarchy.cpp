@@ -103,23 +103,30 @@ glm::dvec3 surfaceReflectance(const Scene& scene, std::uint32_t polygon, const s
     return rho;
 }
 
+std::vector<glm::dvec2> polygonSampleParams(int vertexCount, int n) {
+    std::vector<glm::dvec2> uv;
+    uv.reserve(std::size_t(n) * std::size_t(n));
+    if (vertexCount == 4) {
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) uv.emplace_back((i + 0.5) / n, (j + 0.5) / n);
+        return uv;
+    }
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; i + j < n; ++j) {
+            uv.emplace_back((i + 1.0 / 3.0) / n, (j + 1.0 / 3.0) / n);  // upward
+            if (i + j < n - 1) uv.emplace_back((i + 2.0 / 3.0) / n, (j + 2.0 / 3.0) / n);  // downward
+        }
+    return uv;
+}
+
 const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount) {
-    static const std::array<glm::dvec2, 16> quad = [] {
-        std::array<glm::dvec2, 16> uv{};
-        for (int j = 0; j < 4; ++j)
-            for (int i = 0; i < 4; ++i) uv[4 * j + i] = glm::dvec2((i + 0.5) / 4.0, (j + 0.5) / 4.0);
-        return uv;
-    }();
-    static const std::array<glm::dvec2, 16> triangle = [] {
-        std::array<glm::dvec2, 16> uv{};
-        int n = 0;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; i + j < 4; ++j) {
-                uv[n++] = glm::dvec2((i + 1.0 / 3.0) / 4.0, (j + 1.0 / 3.0) / 4.0);  // upward
-                if (i + j < 3) uv[n++] = glm::dvec2((i + 2.0 / 3.0) / 4.0, (j + 2.0 / 3.0) / 4.0);  // downward
-            }
-        return uv;
-    }();
+    const auto four = [](int count) {
+        const std::vector<glm::dvec2> uv = polygonSampleParams(count, 4);
+        std::array<glm::dvec2, 16> out{};
+        std::copy(uv.begin(), uv.end(), out.begin());
+        return out;
+    };
+    static const std::array<glm::dvec2, 16> quad = four(4), triangle = four(3);
     return vertexCount == 4 ? quad : triangle;
 }
 

@@ -27,9 +27,11 @@ glm::dvec2 polygonTexCoord(const Polygon& p, const glm::dvec2& uv);
 // scaled by the mean of the texels under the part over the texture's mean
 // (each channel at most kMaxReflectance).
 glm::dvec3 surfaceReflectance(const Scene& scene, std::uint32_t polygon, const std::array<glm::dvec2, 4>& param);
-// 16 fixed parametric points spread evenly over a polygon: a 4 x 4 grid of
-// cell centres on quads, the centroids of the 16 sub-triangles of a 4-level
-// split on triangles.
+// n^2 fixed parametric points spread evenly over a polygon: an n x n grid
+// of cell centres on quads, the centroids of the n^2 sub-triangles of an
+// n-way split on triangles.
+std::vector<glm::dvec2> polygonSampleParams(int vertexCount, int n);
+// The same for n = 4, the 16 points most users take.
 const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount);
 // Van der Corput's radical inverse of k in base `base`, in [0, 1): with bases
 // 2 and 3, the Halton points the fixed ray sets are jittered by

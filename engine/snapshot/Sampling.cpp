@@ -10,14 +10,21 @@ namespace rad {
 
 RadiositySamples sampleRadiosity(const Scene& scene, const Hierarchy& hierarchy) {
     RadiositySamples out;
+    double total = 0.0;
+    for (const Polygon& p : scene.polygons) total += p.area();
+    const double cell = total / double(kSamplesOverScene);
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
         const ElementId top = hierarchy.polygonElement(p);
-        const auto& uv = polygonSampleParams(scene.polygons[p].vertexCount);
-        const double w = scene.polygons[p].area() / static_cast<double>(uv.size());
+        const double area = scene.polygons[p].area();
+        const int n = cell > 0.0 ? std::clamp(int(std::ceil(std::sqrt(area / cell))), kLeastSamplesAcross, kMostSamplesAcross)
+                                 : kLeastSamplesAcross;
+        const std::vector<glm::dvec2> uv = polygonSampleParams(scene.polygons[p].vertexCount, n);
+        const double w = area / static_cast<double>(uv.size());
         for (const glm::dvec2& s : uv) {
             out.luminance.push_back(top == kNone ? 0.0 : luminance(hierarchy[hierarchy.pathTo(p, s).back()].radiosity));
             out.weight.push_back(w);
             out.object.push_back(scene.polygons[p].object);
+            out.polygon.push_back(p);
         }
     }
     return out;

@@ -8,6 +8,12 @@
 
 namespace rad {
 
+// About this many points over the whole scene, spread by area, and between
+// 4 x 4 and 64 x 64 on each polygon.
+inline constexpr int kSamplesOverScene = 20'000;
+inline constexpr int kLeastSamplesAcross = 4;
+inline constexpr int kMostSamplesAcross = 64;
+
 RadiositySamples sampleRadiosity(const Scene& scene, const Hierarchy& hierarchy);
 
 }  // namespace rad

@@ -56,16 +56,13 @@ double radiosityFacing(const Engine& engine, const std::string& name, const V& n
     const RadiositySamples samples = engine.samples();
     const std::uint32_t object = *s.findObject(name);
     double sum = 0.0, area = 0.0;
-    std::size_t i = 0;
-    for (const Polygon& p : s.polygons) {
-        const std::size_t n = polygonSampleParams(p.vertexCount).size();
+    for (std::size_t k = 0; k < samples.luminance.size(); ++k) {
+        const Polygon& p = s.polygons[samples.polygon[k]];
         const double x = p.centroid().x;
-        if (p.object == object && glm::dot(p.normal(), normal) > 0.99 && x > 1.01 && x < 1.40)
-            for (std::size_t k = i; k < i + n; ++k) {
-                sum += samples.weight[k] * samples.luminance[k];
-                area += samples.weight[k];
-            }
-        i += n;
+        if (p.object == object && glm::dot(p.normal(), normal) > 0.99 && x > 1.01 && x < 1.40) {
+            sum += samples.weight[k] * samples.luminance[k];
+            area += samples.weight[k];
+        }
     }
     return area > 0.0 ? sum / area : 0.0;
 }

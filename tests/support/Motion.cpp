@@ -37,6 +37,13 @@ SolutionError compareWithFullSolve(const Engine& engine, const EngineSettings& s
     return compareSamples(engine.samples(), full.samples());
 }
 
+RadiositySamples finerSolve(const Scene& scene, EngineSettings settings) {
+    settings.epsilon /= 8.0;
+    Engine finer(scene, settings);
+    if (!finer.solve().converged) throw std::runtime_error("finerSolve: the finer solve did not converge");
+    return finer.samples();
+}
+
 EngineSettings coarse() {
     EngineSettings settings;
     settings.epsilon = 1e-3;

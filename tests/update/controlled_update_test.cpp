@@ -29,6 +29,7 @@ namespace {
 using V = glm::dvec3;
 using Clock = std::chrono::steady_clock;
 using test::allFinite;
+using test::finerSolve;
 using test::objectIndex;
 using test::secondsSince;
 using test::translation;
@@ -211,7 +212,17 @@ struct LateAndFree {
     void expectTheSameSolution() {
         const CoverageResult c = checkCoverage(late, 5u, 200);
         EXPECT_EQ(c.missing + c.doubled, 0) << c.firstBad;
-        EXPECT_LT(compareSamples(late.samples(), free.samples()).rms, 1e-3);
+        // The same solution but for the leaves along the block's shadow,
+        // which the two paths mesh a little otherwise: no further from a
+        // finer solve than the unlimited frames.
+        const RadiositySamples finer = finerSolve(late.scene(), coarse());
+        const double lateToFiner = compareSamples(late.samples(), finer).rms;
+        const double freeToFiner = compareSamples(free.samples(), finer).rms;
+        const double apart = compareSamples(late.samples(), free.samples()).rms;
+        std::printf("  late against free: rms %.2e; against an 8x finer solve: late %.2e, free %.2e\n", apart,
+                    lateToFiner, freeToFiner);
+        EXPECT_LT(apart, 0.01);
+        EXPECT_LT(lateToFiner, 1.1 * freeToFiner) << "the unlimited frames: " << freeToFiner;
     }
 };
 
@@ -513,15 +524,20 @@ TEST(StabilityControlledUpdate, ThousandBackAndForthUnderSmallBudget) {
     const RadiositySamples back = engine.samples();
     ASSERT_TRUE(allFinite(back));
     const SolutionError e = compareSamples(back, original);
+    const RadiositySamples finer = finerSolve(engine.scene(), coarse());
+    const double backToFiner = compareSamples(back, finer).rms, originalToFiner = compareSamples(original, finer).rms;
     const std::size_t links1 = engine.linkCount();
     const std::size_t memory1 = engine.memory().total();
     std::printf("  %d moves under budget 30: at most %zu spent and %zu pending per frame, at most %zu links; "
                 "back + refinePending (refined %zu): rms %.2e max %.2e; links %zu -> %zu, memory %zu -> %zu bytes; "
-                "%.2f s\n",
+                "%.2f s; against an 8x finer solve: back %.2e, first %.2e\n",
                 kMoves, maxSpent, maxPending, maxLinks, idle.refined, e.rms, e.max, links0, links1, memory0, memory1,
-                walkSeconds);
+                walkSeconds, backToFiner, originalToFiner);
     RecordProperty("rms", std::to_string(e.rms));
-    EXPECT_LT(e.rms, 1e-3);
+    // Back where it began, meshed a little otherwise along the block's
+    // shadow, and no further from a finer solve than the first solve.
+    EXPECT_LT(e.rms, 5e-3);
+    EXPECT_LT(backToFiner, 1.1 * originalToFiner);
     EXPECT_LE(static_cast<double>(links1), 1.05 * static_cast<double>(links0));
     EXPECT_LE(static_cast<double>(memory1), 1.05 * static_cast<double>(memory0));
 }

@@ -89,8 +89,16 @@ TEST_F(ScaledLastEdit, AChangeOfColourOrAMoveDropsTheKeptLight) {
     });
     std::tie(a, b) = both(dim(V(2.0)));
     EXPECT_GT(a.transfers, b.transfers / 2) << "the block moved: nothing to scale";
+    // Within the 1% the edit issue asks of a full solve of the edited scene
+    // (0.73%: after its move the block's shadow is meshed otherwise), and
+    // no further from an 8x finer solve than that full solve is (2.51%
+    // against 2.71%).
     const SolutionError e = test::compareWithFullSolve(scaled, settings);
-    EXPECT_LT(e.rms, 0.005) << "max " << e.max << ", worst object " << e.worstObjectRms;
+    EXPECT_LT(e.rms, 0.01) << "max " << e.max << ", worst object " << e.worstObjectRms;
+    Engine full(scaled.scene(), settings);
+    ASSERT_TRUE(full.solve().converged);
+    const RadiositySamples finer = test::finerSolve(scaled.scene(), settings);
+    EXPECT_LT(compareSamples(scaled.samples(), finer).rms, 1.1 * compareSamples(full.samples(), finer).rms);
 }
 
 // On a deadline the scaled light is sent only when it is expected to fit:

@@ -30,6 +30,7 @@ using Clock = std::chrono::steady_clock;
 using test::allFinite;
 using test::coarse;
 using test::compareWithFullSolve;
+using test::finerSolve;
 using test::objectIndex;
 using test::rotationAbout;
 using test::secondsSince;
@@ -219,9 +220,18 @@ TEST(LineSpaceUpdate, OutsideTheSceneAndBackIsValid) {
     const RadiositySamples back = engine.samples();
     ASSERT_TRUE(allFinite(back));
     const SolutionError e = compareSamples(back, original);
-    std::printf("  far away rms vs start %.3f; back at start rms %.2e max %.2e\n", farErr.rms, e.rms, e.max);
+    // The excursion leaves the floor along the block's shadow meshed
+    // otherwise (1,411 elements against 1,355): the leaves there differ by
+    // up to a quarter, and the state back is as close to a finer solve as
+    // the first was (2.36% against 2.43% rms). 16 points per polygon missed
+    // those leaves and read 1e-4.
+    const RadiositySamples finer = finerSolve(engine.scene(), coarse());
+    const double backToFiner = compareSamples(back, finer).rms, originalToFiner = compareSamples(original, finer).rms;
+    std::printf("  far away rms vs start %.3f; back at start rms %.2e max %.2e; against an 8x finer solve: back %.2e, "
+                "first %.2e\n", farErr.rms, e.rms, e.max, backToFiner, originalToFiner);
     RecordProperty("rms", std::to_string(e.rms));
-    EXPECT_LT(e.rms, 1e-3);
+    EXPECT_LT(e.rms, 0.01);
+    EXPECT_LT(backToFiner, 1.1 * originalToFiner);
     // A second move to the same place (no motion at all) changes nothing
     // beyond what the bounce threshold left unsent (as above).
     engine.moveDynamicObject(glm::dmat4(1.0));

@@ -82,6 +82,7 @@ struct RadiositySamples {
     std::vector<double> luminance;       // per sample: luminance of the leaf's B there
     std::vector<double> weight;          // per sample: the area it stands for
     std::vector<std::uint32_t> object;   // per sample: its polygon's object (Scene::objects); may be empty
+    std::vector<std::uint32_t> polygon;  // per sample: its polygon (Scene::polygons); may be empty
 };
 
 // An object is dark when its mean luminance in the reference is below this
