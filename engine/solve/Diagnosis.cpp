@@ -174,14 +174,16 @@ std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double thres
     return {{"lost_light", m.str(), {}, share}};
 }
 
-std::vector<Warning> createdLightWarnings(const EnergyBalance& energy, double threshold) {
-    if (!(energy.emitted > 0.0) || !(energy.created > threshold * energy.emitted)) return {};
-    const double share = energy.created / energy.emitted;
+std::vector<Warning> madeLightWarnings(const EnergyBalance& energy, double threshold) {
+    if (!(energy.emitted > 0.0) || !(-energy.lost > threshold * energy.emitted)) return {};
+    const double share = -energy.lost / energy.emitted;
     std::ostringstream m;
     m.precision(2);
-    m << 100.0 * share << "% more light is absorbed than emitted, the fill adding " << 100.0 * energy.filled / energy.emitted
-      << "% where links left a closed view uncovered: the solution is about that much too bright";
-    return {{"created_light", m.str(), {}, share}};
+    m << "the solution made " << 100.0 * share
+      << "% of the emitted light (what is absorbed, escapes and meets back faces adds up to more), the fill adding "
+      << 100.0 * energy.filled / energy.emitted
+      << "% where links left a closed view uncovered: it is about that much too bright";
+    return {{"made_light", m.str(), {}, share}};
 }
 
 std::vector<Warning> trappedLightWarnings(const Scene& scene) {

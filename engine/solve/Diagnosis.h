@@ -39,13 +39,14 @@ std::vector<Warning> escapingLightWarnings(const Scene& scene, const EnergyBalan
 // what a point sees. The solve converges all the same. None otherwise.
 std::vector<Warning> lostLightWarnings(const EnergyBalance& energy, double threshold);
 
-// A warning when the surfaces absorb more than `threshold` of the emitted
-// light beyond it (EnergyBalance::created): the solution is too bright by
-// about that much. The fill makes it where it raises, over the view that
-// links leave uncovered, light brighter than what lies there (a random
-// room lit by a small bright panel: 0.9%, none with the fill off). None
-// otherwise.
-std::vector<Warning> createdLightWarnings(const EnergyBalance& energy, double threshold);
+// A warning when the solution made more than `threshold` of the emitted
+// light (EnergyBalance::lost below -threshold: what is absorbed, escapes
+// and meets back faces adds up to more than was emitted): it is too bright
+// by about that much. The fill makes it where it raises, over the view
+// that links leave uncovered, light brighter than what lies there (a
+// random room lit by a small bright panel: 1.1%, none with the fill off).
+// None otherwise.
+std::vector<Warning> madeLightWarnings(const EnergyBalance& energy, double threshold);
 
 // A warning for each emitting object more than half of whose power leaves
 // polygons that trap it (scene/Contacts.h, trappingGap: another object's
