@@ -68,34 +68,36 @@ bool LightLinks::facesLight(const PunctualLight& light, std::uint32_t polygon) c
 LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId receiver) const {
     const HElement& e = h_[receiver];
     const SampleSet points = patchSamples(e.patch, kOrder);
-    // Per point: cos(theta) falloff / r^2; the distance kept off zero for a
-    // light that sits on the surface (its cosine is zero there anyway).
+    // Per point: cos(theta) falloff / r^2, unoccluded; the distance kept off
+    // zero for a light that sits on the surface (its cosine is zero there).
     const double floor2 = 1e-6 * e.area;
-    std::array<double, kMaxOrder * kMaxOrder> g{};
+    const auto unoccluded = [&](const glm::dvec3& p) {
+        const glm::dvec3 d = light.position - p;
+        const double r2 = std::max(glm::dot(d, d), floor2);
+        const glm::dvec3 toward = d / std::sqrt(r2);
+        const double cosTheta = glm::dot(e.normal, toward);
+        return cosTheta > 0.0 ? light.falloff(-toward) * cosTheta / r2 : 0.0;
+    };
     std::array<RayCaster::Segment, RayCaster::kMaxSegments> segments;
+    // Bit k: the k-th of the first n segments meets something, in either layer.
+    const auto blocked = [&](std::size_t n) -> std::uint16_t {
+        if (n == 0) return 0;
+        const std::span<const RayCaster::Segment> span(segments.data(), n);
+        return rays_.blocked(Layer::Static, span) | rays_.blocked(Layer::Dynamic, span);
+    };
+    std::array<double, kMaxOrder * kMaxOrder> g{};
     std::array<std::size_t, RayCaster::kMaxSegments> of{};
     std::size_t rays = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
-        const glm::dvec3 d = light.position - points[i].p;
-        const double r2 = std::max(glm::dot(d, d), floor2);
-        const double r = std::sqrt(r2);
-        const glm::dvec3 toward = d / r;
-        const double cosTheta = glm::dot(e.normal, toward);
-        if (!(cosTheta > 0.0)) continue;
-        g[i] = light.falloff(-toward) * cosTheta / r2;
+        g[i] = unoccluded(points[i].p);
         if (g[i] > 0.0 && rays < segments.size()) {
             segments[rays] = {points[i].p, light.position, e.polygon, RayCaster::kNoPolygon};
             of[rays++] = i;
         }
     }
-    bool allBlocked = false;
-    if (rays > 0) {
-        const std::span<const RayCaster::Segment> span(segments.data(), rays);
-        const std::uint16_t blocked = rays_.blocked(Layer::Static, span) | rays_.blocked(Layer::Dynamic, span);
-        for (std::size_t k = 0; k < rays; ++k)
-            if (blocked & (1u << k)) g[of[k]] = 0.0;
-        allBlocked = blocked == (1u << rays) - 1u;
-    }
+    const std::uint16_t shadowed = blocked(rays);
+    for (std::size_t k = 0; k < rays; ++k)
+        if (shadowed & (1u << k)) g[of[k]] = 0.0;
     Estimate out;
     // Every point in shadow: a lit band between them would be missed, and
     // its light with it, the element left unlinked and never refined (a
@@ -103,21 +105,14 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
     // 2.3% of a spot's light). The element's corners, edge midpoints and
     // centre are looked at too; where one of them sees the light, the
     // element is refined as for the light it would get there.
-    if (allBlocked) {
-        const glm::dvec3 centre = e.center;
+    if (rays > 0 && shadowed == (1u << rays) - 1u) {
+        std::array<double, RayCaster::kMaxSegments> probeG{};
         std::size_t probes = 0;
-        std::array<double, RayCaster::kMaxSegments> unoccluded{};
         const auto probe = [&](const glm::dvec3& at) {
-            if (probes >= segments.size()) return;
-            const glm::dvec3 p = glm::mix(at, centre, 0.02);  // just inside the element
-            const glm::dvec3 d = light.position - p;
-            const double r2 = std::max(glm::dot(d, d), floor2);
-            const glm::dvec3 toward = d / std::sqrt(r2);
-            const double cosTheta = glm::dot(e.normal, toward);
-            if (!(cosTheta > 0.0)) return;
-            const double v = light.falloff(-toward) * cosTheta / r2;
-            if (!(v > 0.0)) return;
-            unoccluded[probes] = v;
+            const glm::dvec3 p = glm::mix(at, e.center, 0.02);  // just inside the element
+            const double v = unoccluded(p);
+            if (!(v > 0.0) || probes >= segments.size()) return;
+            probeG[probes] = v;
             segments[probes++] = {p, light.position, e.polygon, RayCaster::kNoPolygon};
         };
         const int n = e.patch.n;
@@ -125,13 +120,10 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
             probe(e.patch.v[k]);
             probe(0.5 * (e.patch.v[k] + e.patch.v[(k + 1) % n]));
         }
-        probe(centre);
-        if (probes > 0) {
-            const std::span<const RayCaster::Segment> span(segments.data(), probes);
-            const std::uint16_t blocked = rays_.blocked(Layer::Static, span) | rays_.blocked(Layer::Dynamic, span);
-            for (std::size_t k = 0; k < probes; ++k)
-                if (!(blocked & (1u << k))) out.spread = std::max(out.spread, unoccluded[k]);
-        }
+        probe(e.center);
+        const std::uint16_t probeShadowed = blocked(probes);
+        for (std::size_t k = 0; k < probes; ++k)
+            if (!(probeShadowed & (1u << k))) out.spread = std::max(out.spread, probeG[k]);
     }
     double lo = INFINITY, weight = 0.0;
     for (std::size_t i = 0; i < points.size(); ++i) {
