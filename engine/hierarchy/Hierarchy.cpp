@@ -193,7 +193,7 @@ ElementId Hierarchy::add(HElement e, const ElementBounds& bounds) {
     }
     elements_.push_back(std::move(e));
     bounds_.push_back(bounds);
-    quadrature_.emplace_back();
+    quadrature_.push_back({});
     return static_cast<ElementId>(elements_.size() - 1);
 }
 
@@ -340,7 +340,8 @@ void Hierarchy::finishCluster(ElementId id, bool turned) {
 
 namespace {
 
-double ownCoverage(const std::vector<HElement>& elements, const HElement& e) {
+template <class Elements>
+double ownCoverage(const Elements& elements, const HElement& e) {
     double below = 0.0, area = 0.0;
     for (ElementId k : e.children) {
         below += elements[k].area * elements[k].coverage;
@@ -587,11 +588,12 @@ void Hierarchy::refreshAncestors(ElementId id) {
 }
 
 void Hierarchy::compact(double slack) {
-    // After a solve (slack 0) every list and array is made exact: with the
-    // 25% of slack kept before, `office` held 1.3 bytes per link more, and
-    // the copies cost the same 67 ms there (in the building floor, a 15 s
-    // solve, 0.96 s instead of 0.51 s). Idle frames keep some slack, so that
-    // the lists a drag grows are not copied back and forth.
+    // After a solve (slack 0) every list is made exact, and the element
+    // arrays keep no chunk past their last item: with the 25% of slack kept
+    // before, `office` held 1.3 bytes per link more, and the copies cost the
+    // same 67 ms there (in the building floor, a 15 s solve, 0.96 s instead
+    // of 0.51 s). Idle frames keep some slack, so that the lists a drag
+    // grows are not copied back and forth.
     const auto shrink = [slack](auto& v, std::size_t spare) {
         if (double(v.capacity() - v.size()) > double(spare) + slack * double(v.size())) v.shrink_to_fit();
     };
@@ -612,16 +614,17 @@ void Hierarchy::compact(double slack) {
 }
 
 std::size_t Hierarchy::memoryBytes() const {
-    std::size_t bytes = elements_.capacity() * sizeof(HElement) + bounds_.capacity() * sizeof(ElementBounds) +
-                        quadrature_.capacity() * sizeof(QuadraturePoints) +
-                        direct_.capacity() * sizeof(glm::dvec3) +
+    std::size_t bytes = elements_.memoryBytes() + bounds_.memoryBytes() + quadrature_.memoryBytes() +
+                        direct_.memoryBytes() +
                         free_.capacity() * sizeof(ElementId) +
                         shapes_.capacity() * sizeof(ClusterShape) + freeShapes_.capacity() * sizeof(std::uint32_t);
     for (const ClusterShape& s : shapes_) bytes += s.heapBytes();
-    for (const HElement& e : elements_)
+    for (std::size_t i = 0; i < elements_.size(); ++i) {
+        const HElement& e = elements_[i];
         bytes += (e.children.capacity() + e.links.capacity() + e.plinks.capacity() + e.outLinks.capacity() +
                   e.outPlinks.capacity()) *
                  sizeof(std::uint32_t);
+    }
     return bytes;
 }
 

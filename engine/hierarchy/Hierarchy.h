@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "hierarchy/ChunkedArray.h"
 #include "hierarchy/ClusterShape.h"
 #include "hierarchy/HElement.h"
 #include "links/FormFactor.h"
@@ -186,10 +187,12 @@ private:
     void finishCluster(ElementId id, bool turned = true);
 
     const Scene& scene_;  // outlives the hierarchy; polygons move with the dynamic object
-    std::vector<HElement> elements_;
-    std::vector<ElementBounds> bounds_;  // parallel to elements_
-    std::vector<QuadraturePoints> quadrature_;  // parallel to elements_
-    std::vector<glm::dvec3> direct_;     // parallel to elements_ once a light link exists
+    // In chunks of 256 (ChunkedArray.h): a frame that subdivides does not
+    // copy them all.
+    ChunkedArray<HElement, 8> elements_;
+    ChunkedArray<ElementBounds, 8> bounds_;          // parallel to elements_
+    ChunkedArray<QuadraturePoints, 8> quadrature_;  // parallel to elements_
+    ChunkedArray<glm::dvec3, 8> direct_;            // parallel to elements_ once a light link exists
     std::vector<ElementId> free_;
     std::uint64_t releases_ = 0;
     std::vector<ClusterShape> shapes_;

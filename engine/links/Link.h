@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "hierarchy/ChunkedArray.h"
 #include "hierarchy/HElement.h"
 
 namespace rad {
@@ -60,8 +61,9 @@ struct Link {
 static_assert(sizeof(Link) == 32, "a link is two ids, four floats, two masks and four bytes of flags");
 
 // All links and p-links, addressed by LinkId; freed slots are reused. They
-// live in fixed-size chunks: a store of a million links grows without ever
-// copying itself, and has at most one chunk of slack.
+// live in chunks of 8,192 (256 KiB, hierarchy/ChunkedArray.h): a store of a
+// million links grows without ever copying itself, and has at most one chunk
+// of slack.
 class LinkStore {
 public:
     LinkId add(const Link& link) {
@@ -69,44 +71,37 @@ public:
         if (!free_.empty()) {
             id = free_.back();
             free_.pop_back();
+            links_[id] = link;
         } else {
-            id = static_cast<LinkId>(size_++);
-            if ((id & kMask) == 0) chunks_.push_back(std::make_unique<Chunk>());
+            id = static_cast<LinkId>(links_.size());
+            links_.push_back(link);
         }
-        Link& l = (*this)[id];
-        l = link;
-        l.live = true;
+        links_[id].live = true;
         return id;
     }
     void remove(LinkId id) {
-        (*this)[id] = Link{};
+        links_[id] = Link{};
         free_.push_back(id);
     }
-    Link& operator[](LinkId id) { return (*chunks_[id >> kShift])[id & kMask]; }
-    const Link& operator[](LinkId id) const { return (*chunks_[id >> kShift])[id & kMask]; }
-    std::size_t slots() const { return size_; }
-    std::size_t liveCount() const { return size_ - free_.size(); }
+    Link& operator[](LinkId id) { return links_[id]; }
+    const Link& operator[](LinkId id) const { return links_[id]; }
+    std::size_t slots() const { return links_.size(); }
+    std::size_t liveCount() const { return links_.size() - free_.size(); }
     // Reading the links of a list in turn, asks for the one a few places
     // ahead of `k`: a list's links are scattered in the store, and a sum
     // over them otherwise waits on memory at each (summing every receiver
     // of `office` again: 8.6 -> 7.1 ms; pushing its clusters: 6.7 -> 5.3).
     void prefetchAhead(std::span<const LinkId> ids, std::size_t k) const {
         constexpr std::size_t kAhead = 8;
-        if (k + kAhead < ids.size()) __builtin_prefetch(&(*this)[ids[k + kAhead]]);
+        if (k + kAhead < ids.size()) __builtin_prefetch(&links_[ids[k + kAhead]]);
     }
     // Drops the growth slack of the free list (after a solve: links come and
     // go by a few percent per move from then on).
     void compact() { free_.shrink_to_fit(); }
-    std::size_t memoryBytes() const {
-        return chunks_.size() * sizeof(Chunk) + chunks_.capacity() * sizeof(chunks_[0]) + free_.capacity() * sizeof(LinkId);
-    }
+    std::size_t memoryBytes() const { return links_.memoryBytes() + free_.capacity() * sizeof(LinkId); }
 
 private:
-    static constexpr unsigned kShift = 13;  // 8192 links (256 KiB) a chunk
-    static constexpr LinkId kMask = (LinkId(1) << kShift) - 1;
-    using Chunk = std::array<Link, std::size_t(1) << kShift>;
-    std::vector<std::unique_ptr<Chunk>> chunks_;
-    std::size_t size_ = 0;
+    ChunkedArray<Link, 13> links_;
     std::vector<LinkId> free_;
 };
 
