@@ -32,11 +32,18 @@ public:
         if (size_ == capacity()) chunks_.push_back(std::make_unique<Chunk>());
         (*this)[size_++] = std::move(item);
     }
-    // Items past the old size are T{}; those past the new one are dropped.
-    void resize(std::size_t n) {
+    // Items past the old size are `value`; those past the new one are dropped.
+    void resize(std::size_t n, const T& value = T{}) {
         while (capacity() < n) chunks_.push_back(std::make_unique<Chunk>());
-        for (std::size_t i = std::min(n, size_); i < std::max(n, size_); ++i) (*this)[i] = T{};
+        for (std::size_t i = size_; i < n; ++i) (*this)[i] = value;
+        for (std::size_t i = n; i < size_; ++i) (*this)[i] = T{};
         size_ = n;
+    }
+    // n items, each `value`.
+    void assign(std::size_t n, const T& value) {
+        const std::size_t kept = std::min(n, size_);
+        resize(n, value);
+        for (std::size_t i = 0; i < kept; ++i) (*this)[i] = value;
     }
     // Frees the chunks past the last item.
     void shrink_to_fit() {

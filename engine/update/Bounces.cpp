@@ -79,11 +79,16 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             for (ElementId e : visited)
                 if (const std::size_t n = h_[e].outLinks.size()) joinUnsent(e, n);
         } else {
-            // The unsent join the senders, each once.
-            std::vector<char> sends(h_.size(), 0);
-            for (ElementId e : visited) sends[e] = 1;
+            // The unsent join the senders, each once (marks kept zero
+            // between calls: a new array of the building floor's 623,000
+            // elements faulted 0.6 MB in each time, about 1.7 ms).
+            if (sending_.size() < h_.size()) sending_.resize(h_.size(), 0);
+            const std::size_t fromThisFrame = visited.size();
+            for (ElementId e : visited) sending_[e] = 1;
             for (ElementId e : unsent_.members())
-                if (!std::exchange(sends[e], 1)) visited.push_back(e);
+                if (!std::exchange(sending_[e], 1)) visited.push_back(e);
+            for (std::size_t i = 0; i < fromThisFrame; ++i) sending_[visited[i]] = 0;
+            for (ElementId e : unsent_.members()) sending_[e] = 0;
             unsent_.clear();
             unsentLinks_ = 0;
         }

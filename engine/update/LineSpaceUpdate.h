@@ -311,12 +311,12 @@ private:
     // and bounces visit `office`'s 24,000 elements up to six times: sorting
     // them took 1.3 to 5.5 ms).
     std::vector<ElementId> touched_;
-    std::vector<char> isTouched_;  // per element: in touched_
+    ChunkedArray<char, 16> isTouched_;  // per element: in touched_
     void touch(std::span<const ElementId> elements);
     void clearTouched();
     // Per element: how much the bounces could have moved its radiosity since
     // its last push; negative when it waits for none.
-    std::vector<double> waitingChange_;
+    ChunkedArray<double, 12> waitingChange_;
     // The receivers whose arrivals could not yet move their radiosity by the
     // threshold wait here instead of pushing their subtrees at every bounce
     // (a cluster's push walks all of its members); one push at the end of
@@ -434,7 +434,7 @@ private:
     std::uint32_t pushFrame_ = 0;
     // Frame in which a link became a candidate (written by concurrent visits:
     // each stamps only its own links).
-    std::vector<std::uint32_t> linkStamp_;
+    ChunkedArray<std::uint32_t, 14> linkStamp_;
     bool stampedThisFrame(LinkId id) const;
     void stamp(LinkId id);
     std::vector<LinkId> candidates_;
@@ -534,8 +534,9 @@ private:
     // The motion clock: the sum over moves of the largest motionShare of the
     // objects moved; and its value before the last move.
     double motion_ = 0.0, motionBefore_ = 0.0;
-    std::vector<std::uint8_t> staleMark_;
-    mutable std::vector<double> powerScratch_;  // estimatedError's per-element sums, zero between calls
+    ChunkedArray<std::uint8_t, 16> staleMark_;
+    mutable ChunkedArray<double, 12> powerScratch_;  // estimatedError's per-element sums, zero between calls
+    ChunkedArray<char, 16> sending_;                // bounce()'s per-element marks, zero between calls
     mutable std::optional<double> meanReflectance_;  // estimatedError's, over the polygons' area
     // What a deferred object's links carry (estimatedError): per object
     // cluster, the potential transfer of the active links with an end in its

@@ -8,7 +8,7 @@ namespace rad {
 
 bool UnsentSet::join(ElementId e) {
     if (contains(e)) return false;
-    if (term_.size() <= e) term_.resize(std::size_t(e) + 1, kNotMember);
+    cover(std::size_t(e) + 1);
     term_[e] = 0.0;  // in the sum once made
     members_.push_back(e);
     if (known_) recount_.push_back(e);

@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "hierarchy/ChunkedArray.h"
 #include "hierarchy/HElement.h"
 
 namespace rad {
@@ -23,6 +24,12 @@ namespace rad {
 class UnsentSet {
   public:
     bool contains(ElementId e) const { return e < term_.size() && !std::isnan(term_[e]); }
+    // Room for the elements with ids under n, made now rather than by the
+    // first joins (on the building floor, 38 ms of a frame). It grows
+    // without copying.
+    void cover(std::size_t n) {
+        if (term_.size() < n) term_.resize(n, kNotMember);
+    }
     bool empty() const { return members_.empty(); }
     std::size_t size() const { return members_.size(); }
     const std::vector<ElementId>& members() const { return members_; }
@@ -49,7 +56,7 @@ class UnsentSet {
   private:
     static constexpr double kNotMember = std::numeric_limits<double>::quiet_NaN();
     std::vector<ElementId> members_;
-    std::vector<double> term_;        // per element: its term in sum_; kNotMember for others
+    ChunkedArray<double, 12> term_;   // per element: its term in sum_; kNotMember for others
     std::vector<ElementId> recount_;  // whose terms are made again at the next sum
     double sum_ = 0.0;
     bool known_ = false;

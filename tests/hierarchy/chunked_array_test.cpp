@@ -53,5 +53,19 @@ TEST(ChunkedArray, ResizeAddsDefaultItemsAndShrinkFreesWholeChunks) {
     EXPECT_LT(bytes, 48 * sizeof(Item) + 1024);
 }
 
+TEST(ChunkedArray, ResizeAndAssignWithAValue) {
+    ChunkedArray<double, 4> a;
+    a.resize(10, -1.0);
+    a[3] = 2.0;
+    a.resize(40, 7.0);  // the first ten kept, the rest 7
+    EXPECT_EQ(a[0], -1.0);
+    EXPECT_EQ(a[3], 2.0);
+    EXPECT_EQ(a[10], 7.0);
+    EXPECT_EQ(a[39], 7.0);
+    a.assign(20, 0.5);  // every one
+    ASSERT_EQ(a.size(), 20u);
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], 0.5);
+}
+
 }  // namespace
 }  // namespace rad
