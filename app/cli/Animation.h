@@ -94,5 +94,8 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
                           References* references, const std::function<void(int, const Engine&, const FrameRecord*)>& onFrame = {});
 
 double median(std::vector<double> values);
+// The nearest-rank percentile (p in (0, 1]): the smallest value that at
+// least p of the values do not exceed. 0 for none.
+double percentile(std::vector<double> values, double p);
 
 }  // namespace rad::cli

@@ -93,6 +93,9 @@ TEST(CliAnimate, ReportsEveryFrameAndMatchesAFullSolve) {
     }
     EXPECT_GT(jsonAt(report, "/summary/median_seconds"), 0.0);
     EXPECT_GE(jsonAt(report, "/summary/worst_seconds"), jsonAt(report, "/summary/median_seconds"));
+    // Three frames: the nearest-rank 95th percentile is the longest.
+    EXPECT_EQ(jsonAt(report, "/summary/p95_seconds"), jsonAt(report, "/summary/worst_seconds"));
+    EXPECT_TRUE(jsonAt(report, "/summary/frames_over_target").is_null());  // no target asked for
     EXPECT_LE(jsonAt(report, "/summary/worst_rms"), 0.01);
     double worstObject = 0.0;
     for (const json& frame : frames) worstObject = std::max(worstObject, frame["error_vs_full"]["worst_object_rms"].get<double>());
@@ -177,6 +180,14 @@ TEST(CliAnimate, BudgetAndTargetFrameRateAreReported) {
         EXPECT_TRUE(jsonAt(frame, "/budget").is_number_integer());
         EXPECT_GE(jsonAt(frame, "/budget"), 0);
     }
+    // The summary counts the frames over 1.1 times the target, as the
+    // frames' own times say.
+    std::size_t over = 0;
+    for (const json& frame : report["frames"])
+        over += frame["seconds"]["total"].get<double>() > 1.1 * frame["target_seconds"].get<double>() ? 1 : 0;
+    EXPECT_EQ(jsonAt(report, "/summary/frames_over_target"), over);
+    EXPECT_NEAR(jsonAt(report, "/summary/target_seconds").get<double>(), 1.0 / 30.0, 1e-12);
+    EXPECT_NE(r.output.find("over 1.1 times the 0.0333 s target"), std::string::npos) << r.output;
     r = runCli("animate " + shellQuote(kCornell) + " --object short-block --frames 2 --translate 0,0,0.1 --budget 3"
                " --target-fps 30");
     EXPECT_EQ(r.exitCode, 2);
