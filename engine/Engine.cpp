@@ -224,15 +224,21 @@ struct Engine::State {
     void buildMesh(FrameStats& f, std::optional<double> deadlineSeconds = std::nullopt) {
         const auto start = std::chrono::steady_clock::now();
         std::optional<std::chrono::steady_clock::time_point> stop;
+        // The polygons whose leaves changed or moved are meshed anew, at ten
+        // times the cost a leaf of colouring one again: their time is known
+        // apart (SnapshotCache::reshapeSecondsPerLeaf), and the fit is of
+        // the rest.
+        const double reshape = meshParts.reshapeSecondsPerLeaf * double(hierarchy.reshapedLeaves());
         if (deadlineSeconds) {
-            const double left = std::max(0.0, *deadlineSeconds - f.totalSeconds - meshCost.model().first);
+            const double left = std::max(0.0, *deadlineSeconds - f.totalSeconds - meshCost.model().first - reshape);
             stop = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(left));
         }
         f.unmeshed = makeRadiositySnapshot(scene, hierarchy, mesh, meshParts, stop, &hierarchy.meshTouched());
         meshValid = true;
         f.snapshotSeconds = secondsSince(start);
         f.totalSeconds += f.snapshotSeconds;
-        meshCost.record(f.changedLeaves, f.snapshotSeconds);
+        meshCost.record(f.changedLeaves, std::max(0.0, f.snapshotSeconds - reshape));
+        hierarchy.clearReshaped();
     }
     // Its time against the surface leaves the frame changed (their polygons
     // are meshed again), so that a frame on a deadline leaves it the time
@@ -257,11 +263,13 @@ struct Engine::State {
         // deadline (SnapshotCache::resizesWaited): its time is left for it,
         // up to a quarter of the frame (the building floor's take 100 to
         // 150 ms, more than a frame at 30 fps: left in full, the frames that
-        // owed one did nothing else).
+        // owed one did nothing else). Meshing anew the polygons whose leaves
+        // change or move is counted as the frame goes (Hierarchy::
+        // reshapedLeaves), at its own rate.
         const auto [base, perLeaf] = meshCost.model();
         double owed = meshParts.resizesWaited ? meshParts.relayoutSeconds : 0.0;
         if (settings.deadlineSeconds) owed = std::min(owed, kMostOwed * *settings.deadlineSeconds);
-        updater.setFrameTail({base + meshCost.spread() + owed, perLeaf});
+        updater.setFrameTail({base + meshCost.spread() + owed, perLeaf, meshParts.reshapeSecondsPerLeaf});
         UpdateSettings u = settings;
         if (u.deadlineSeconds) u.deadlineSeconds = *u.deadlineSeconds - elapsed;
         return u;
@@ -770,6 +778,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     // whole mesh takes 0.25 s, which its first frame paid). Not a frame:
     // the mesh's cost model is left to the frames.
     makeRadiositySnapshot(s.scene, s.hierarchy, s.mesh, s.meshParts, std::nullopt, &s.hierarchy.meshTouched());
+    s.hierarchy.clearReshaped();
     s.meshValid = true;
     s.updater.prepare();
     // First guess of a further bounce's cost, until a frame makes one: a
@@ -986,6 +995,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         const Object& o = s.scene.objects[object];
         for (std::uint32_t p = o.firstPolygon; p < o.firstPolygon + o.polygonCount; ++p) moved.push_back(p);
     }
+    for (std::uint32_t p : moved) s.hierarchy.markReshaped(p);  // meshed anew where they now stand
     // The fill follows a moved object's polygons where the scene is not
     // closed (in a closed one every polygon's view stays closed): their
     // closure is measured again where they now stand, with the rays a solve

@@ -133,6 +133,7 @@ const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount) {
 Hierarchy::Hierarchy(const Scene& scene, double minArea, std::vector<double> objectMinArea)
     : scene_(scene), polygonElements_(scene.polygons.size(), kNone), polygonLeaves_(scene.polygons.size(), 0),
       meshTouched_(scene.polygons.size(), 1),
+      reshapedMark_(scene.polygons.size(), 0),
       objectClusters_(scene.objects.size(), kNone), minArea_(minArea), objectMinArea_(std::move(objectMinArea)) {
     std::vector<std::uint32_t> dynamicObjects, staticObjects;
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
@@ -498,14 +499,19 @@ void Hierarchy::subdivide(ElementId id) {
         kids.push_back(add(std::move(c), ElementBounds{quadtreeChildRange(parentRange, k), Aabb{}}));
     }
     elements_[id].children = kids;
+    markReshaped(parent.polygon);
     polygonLeaves_[parent.polygon] += 3;  // a leaf became four
+    reshapedLeaves_ += 3;
     updateGeometry(id);  // touches the polygon's mesh
 }
 
 void Hierarchy::removeChildren(ElementId id) {
     const bool surface = elements_[id].isSurface();
     const std::uint32_t polygon = elements_[id].polygon;
-    if (surface) touchMesh(polygon);
+    if (surface) {
+        touchMesh(polygon);
+        markReshaped(polygon);
+    }
     std::vector<ElementId> stack = std::move(elements_[id].children);
     elements_[id].children.clear();
     if (surface && !stack.empty()) ++polygonLeaves_[polygon];  // a leaf now

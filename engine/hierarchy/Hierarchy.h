@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "hierarchy/ChunkedArray.h"
@@ -93,6 +94,32 @@ public:
     void touchMesh(std::uint32_t polygon) { meshTouched_[polygon] = 1; }
     void touchAllMeshes() { std::fill(meshTouched_.begin(), meshTouched_.end(), std::uint8_t(1)); }
     std::vector<std::uint8_t>& meshTouched() { return meshTouched_; }
+    // The leaves of the polygons whose leaves changed (a subdivision, a
+    // removal) or moved since clearReshaped(): the snapshot meshes those
+    // polygons anew, at ten times the cost a leaf of colouring one again,
+    // so a frame on a deadline leaves their time (Engine::buildMesh). A
+    // polygon counts its leaves when first marked, and three more for each
+    // subdivision after. Marked serially: by subdivide and removeChildren,
+    // and by the engine for the polygons a move carries.
+    void markReshaped(std::uint32_t polygon) {
+        if (std::exchange(reshapedMark_[polygon], std::uint8_t(1))) return;
+        reshapedPolygons_.push_back(polygon);
+        reshapedLeaves_ += polygonLeaves_[polygon];
+    }
+    std::size_t reshapedLeaves() const { return reshapedLeaves_; }
+    // After a snapshot: the polygons it meshed are forgotten; those a stop
+    // left (still marked in meshTouched) stay, counted with their leaves.
+    void clearReshaped() {
+        reshapedLeaves_ = 0;
+        std::erase_if(reshapedPolygons_, [&](std::uint32_t p) {
+            if (meshTouched_[p]) {
+                reshapedLeaves_ += polygonLeaves_[p];
+                return false;
+            }
+            reshapedMark_[p] = 0;
+            return true;
+        });
+    }
     // The cluster holding all of one object's polygons.
     ElementId objectCluster(std::uint32_t object) const { return objectClusters_[object]; }
     // The object clusters right under the root: those that can move without
@@ -200,6 +227,9 @@ private:
     std::vector<ElementId> polygonElements_;
     std::vector<std::uint32_t> polygonLeaves_;  // per polygon (polygonLeaves)
     std::vector<std::uint8_t> meshTouched_;  // per polygon (touchMesh)
+    std::vector<std::uint8_t> reshapedMark_;  // per polygon (markReshaped)
+    std::vector<std::uint32_t> reshapedPolygons_;
+    std::size_t reshapedLeaves_ = 0;
     std::vector<ElementId> objectClusters_;
     std::vector<ElementId> movable_;
     ElementId root_ = kNone;

@@ -788,6 +788,8 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     std::vector<std::uint8_t> remeshed(polygons, 0);
     std::atomic<std::size_t> meshed{0}, left{0};
     std::atomic<bool> resizesWait{false}, reshaped{false};
+    std::atomic<std::size_t> reshapedLeaves{0};
+    const auto meshingStart = std::chrono::steady_clock::now();
     // A build after one that left resizes makes a new layout whatever its
     // stop, and so does one that has meshed a resized part: the other parts
     // leave it the time (at 120 fps in `two-offices` such builds took 6 ms
@@ -851,6 +853,7 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
                 continue;
             }
             reshaped.store(true, std::memory_order_relaxed);
+            reshapedLeaves.fetch_add(scratch.leaves.size(), std::memory_order_relaxed);
             for (std::vector<glm::vec3>* v : {&part.mesh.positions, &part.mesh.normals, &part.mesh.colors, &part.mesh.texelScale})
                 v->clear();
             part.mesh.uvs.clear();
@@ -864,6 +867,14 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
             part.valid = true;
         }
     });
+    // The meshing's time, all of it counted to the parts meshed anew (those
+    // coloured again cost a tenth as much a leaf); a dearer build counts at
+    // once, a cheaper one by degrees.
+    if (reshapedLeaves.load() >= SnapshotCache::kReshapeSample) {
+        const double rate = std::chrono::duration<double>(std::chrono::steady_clock::now() - meshingStart).count() /
+                            double(reshapedLeaves.load());
+        cache.reshapeSecondsPerLeaf = std::max(rate, 0.75 * cache.reshapeSecondsPerLeaf);
+    }
     // Nothing re-meshed: the mesh assembled last time stands (a frame that
     // changed no radiosity, as when the budget held every link update back).
     // Parts re-meshed to the sizes they had: written in place.

@@ -111,7 +111,7 @@ FrameStats LineSpaceUpdate::goOn(FrameStats stats, const UpdateSettings& setting
     // was given, less the mesh's fixed part.
     const auto share = [&](double s) {
         return start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(
-                           s * std::max(0.0, std::chrono::duration<double>(*deadline_ - start).count() - tail_.seconds(0))));
+                           s * std::max(0.0, std::chrono::duration<double>(*deadline_ - start).count() - tailSeconds(0))));
     };
     const bool onTheClock = mayFindOnly && !motions_.empty() && deadline_;
 
@@ -436,7 +436,7 @@ void LineSpaceUpdate::startLinkUpdates() {
     linkDeadline_.reset();
     if (!deadline_) return;
     const auto now = std::chrono::steady_clock::now();
-    const double left = std::chrono::duration<double>(*deadline_ - now).count() - tail_.seconds(0);
+    const double left = std::chrono::duration<double>(*deadline_ - now).count() - tailSeconds(0);
     linkDeadline_ = now + seconds(std::max(0.0, left) / 2.0);
 }
 
@@ -447,7 +447,7 @@ std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats, bool onTheCl
     std::optional<Solver::PushDeadline> deadline;
     if (onTheClock && deadline_ && !idle_) {
         const double elementsPerArea = double(h_.liveCount()) / std::max(1e-300, h_[h_.root()].area);
-        deadline = Solver::PushDeadline{*deadline_ - seconds(tail_.seconds(stats.changedLeaves)),
+        deadline = Solver::PushDeadline{*deadline_ - seconds(tailSeconds(stats.changedLeaves)),
                                         pushSecondsPerElement_ * elementsPerArea};
     }
     const auto began = std::chrono::steady_clock::now();
@@ -472,7 +472,7 @@ std::vector<ElementId> LineSpaceUpdate::pushPull(FrameStats& stats, bool onTheCl
 double LineSpaceUpdate::shareThatFits(std::size_t changedLeaves, double work, double first) const {
     if (!deadline_) return 1.0;
     const double left = std::chrono::duration<double>(*deadline_ - std::chrono::steady_clock::now()).count() -
-                        tail_.seconds(changedLeaves) - first;
+                        tailSeconds(changedLeaves) - first;
     if (!(left > 0.0)) return 0.0;
     return work > left ? left / work : 1.0;
 }

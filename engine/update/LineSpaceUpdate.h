@@ -142,6 +142,10 @@ public:
     struct FrameTail {
         double base = 0.0;
         double perLeaf = 0.0;
+        // Per leaf of the polygons meshed anew (Hierarchy::reshapedLeaves):
+        // counted as the frame subdivides and moves, apart from the leaves
+        // whose light changed.
+        double perReshapedLeaf = 0.0;
         double seconds(std::size_t changedLeaves) const { return base + perLeaf * double(changedLeaves); }
     };
     void setFrameTail(const FrameTail& tail) { tail_ = tail; }
@@ -446,6 +450,11 @@ private:
     // push-pull and the bounces of what they changed.
     std::optional<std::chrono::steady_clock::time_point> deadline_, linkDeadline_;
     FrameTail tail_;
+    // The tail of the frame as it stands: the mesh's for `changedLeaves`,
+    // and the meshing anew of the polygons reshaped so far.
+    double tailSeconds(std::size_t changedLeaves) const {
+        return tail_.seconds(changedLeaves) + tail_.perReshapedLeaf * double(h_.reshapedLeaves());
+    }
     bool pastDeadline() const { return linkDeadline_ && std::chrono::steady_clock::now() > *linkDeadline_; }
     // Link updates begin now: they get half of the time left.
     void startLinkUpdates();

@@ -182,6 +182,40 @@ TEST(Hierarchy, PolygonLeavesFollowSubdivisionAndRemoval) {
     expectCounts("removed");
 }
 
+// The leaves of the polygons to be meshed anew (what a frame on a deadline
+// leaves the snapshot time for): a polygon counts its leaves when its
+// quadtree first changes, and three more per subdivision after; a polygon
+// marked by the engine (a move) counts its leaves; after a snapshot only
+// those it left (still marked in meshTouched) stay counted.
+TEST(Hierarchy, ReshapedLeavesCountThePolygonsToMeshAnew) {
+    const Scene scene = test::roomWithBlock();
+    Hierarchy h(scene, 1e-4);
+    EXPECT_EQ(h.reshapedLeaves(), 0u);
+    const ElementId wall = h.polygonElement(0), floor = h.polygonElement(1);
+    h.subdivide(wall);
+    EXPECT_EQ(h.reshapedLeaves(), 4u);
+    h.subdivide(h[wall].children[2]);
+    EXPECT_EQ(h.reshapedLeaves(), 7u);
+    h.subdivide(floor);
+    EXPECT_EQ(h.reshapedLeaves(), 11u);
+    h.markReshaped(2);  // moved: its one leaf
+    h.markReshaped(2);  // once
+    EXPECT_EQ(h.reshapedLeaves(), 12u);
+    // A snapshot that meshed the floor and polygon 2 but left the wall.
+    std::vector<std::uint8_t>& touched = h.meshTouched();
+    std::fill(touched.begin(), touched.end(), std::uint8_t(0));
+    touched[0] = 1;
+    h.clearReshaped();
+    EXPECT_EQ(h.reshapedLeaves(), h.polygonLeaves(0));
+    // The wall's removal keeps it marked; the next snapshot meshes it.
+    h.removeChildren(h[wall].children[2]);
+    touched[0] = 0;
+    h.clearReshaped();
+    EXPECT_EQ(h.reshapedLeaves(), 0u);
+    h.removeChildren(floor);  // marked again: its leaves before the removal
+    EXPECT_EQ(h.reshapedLeaves(), 4u);
+}
+
 TEST(Hierarchy, AnObjectsClustersDoNotChangeWhenItTurns) {
     const auto grouped = [](double degrees) {
         Scene s;
