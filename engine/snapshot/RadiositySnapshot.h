@@ -92,11 +92,11 @@ struct SnapshotCache {
     // What meshing a part anew (its leaves changed, or its polygon moved)
     // costs per leaf, measured on builds that did so for at least
     // kReshapeSample leaves: ten times what colouring a part's leaves again
-    // costs, and a moving object's polygons are meshed anew every frame
-    // (a random room's box of 2,400 leaves: 3.4 to 11 ms of a 16.7 ms
+    // costs (a random room's floor of 2,500 leaves, meshed anew when the
+    // light links under a moving box refined: 9 to 12 ms of a 16.7 ms
     // frame, where the fit over all frames' changed leaves left 1 to 2).
-    // A frame that moves objects leaves their leaves this time
-    // (Engine::forUpdater).
+    // A frame on a deadline leaves this time for the leaves it reshapes
+    // (Hierarchy::reshapedLeaves, LineSpaceUpdate::tailSeconds).
     double reshapeSecondsPerLeaf = 0.0;
     static constexpr std::size_t kReshapeSample = 256;
     // What joining every part into a new mesh costs (smoothing included),
