@@ -128,7 +128,16 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
             for (const auto& [e, n] : senders) joinUnsent(e, n);
             break;
         }
-        if (share < 1.0) {
+        // On a deadline a large bounce is sent in runs of senders of about
+        // kBounceRunLinks links, those with the most power first, and the
+        // clock is looked at between runs at the rate this bounce's runs
+        // took: the rate learnt from earlier bounces misjudges one whose
+        // transfers reach receivers all over the scene (a random room of
+        // `bench/untuned/random_room.py` at 60 fps: 341,000 links expected at
+        // 9 ns each took 27 ms). The senders the clock leaves wait, unsent.
+        const bool inRuns = deadline_ && !idle_ && links > kBounceRunLinks;
+        // Cut to its share, or only put in that order for the runs.
+        if (share < 1.0 || inRuns) {
             using Sender = std::pair<ElementId, std::size_t>;
             keepShare(
                 senders, share, [](const Sender& s) { return double(s.second); },
@@ -142,25 +151,6 @@ void LineSpaceUpdate::bounce(std::vector<ElementId> visited, const UpdateSetting
                 std::max(secondsSince(choosingStart) / double(candidates), 0.75 * chooseSecondsPerSender_);
         const auto began = std::chrono::steady_clock::now();
         const std::size_t leavesBefore = stats.changedLeaves;
-        // On a deadline a large bounce is sent in runs of senders of about
-        // kBounceRunLinks links, those with the most power first, and the
-        // clock is looked at between runs at the rate this bounce's runs
-        // took: the rate learnt from earlier bounces misjudges one whose
-        // transfers reach receivers all over the scene (a random room of
-        // `bench/untuned/random_room.py` at 60 fps: 341,000 links expected at
-        // 9 ns each took 27 ms). The senders the clock leaves wait, unsent.
-        const bool inRuns = deadline_ && !idle_ && links > kBounceRunLinks;
-        if (inRuns && share == 1.0) {  // a cut bounce's are in that order already
-            std::vector<double> power(senders.size());
-            tbb::parallel_for(std::size_t(0), senders.size(), [&](std::size_t i) { power[i] = unsentPowerOf(senders[i].first); });
-            std::vector<std::size_t> order(senders.size());
-            for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-            std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return power[a] > power[b]; });
-            std::vector<std::pair<ElementId, std::size_t>> sorted;
-            sorted.reserve(senders.size());
-            for (std::size_t i : order) sorted.push_back(senders[i]);
-            senders.swap(sorted);
-        }
         // A bounce that leaves senders unsent, or may, is no term of the series.
         if (share < 1.0 || inRuns) series.last = series.ratio = glm::dvec3(-1.0);
         bool sent = false;
