@@ -67,10 +67,18 @@ class Solver {
     // expected cost is the element's share of the scene's surface area
     // times `secondsPerArea`: a dirty cluster near the root
     // (a chair's light reaching most of a building floor through one coarse
-    // link) is a push of most of the scene.
+    // link) is a push of most of the scene. Inside a subtree pushed whole,
+    // an element whose own subtree is expected to take more than
+    // kPushClockSeconds waits, unpushed, once the clock has passed `stop`.
+    // Below this expected time, a subtree pushed whole is not checked
+    // against the clock (a clock read costs about a fifth of an element's
+    // push).
+    static constexpr double kPushClockSeconds = 50e-6;
     struct PushDeadline {
         std::chrono::steady_clock::time_point stop;
         double secondsPerArea = 0.0;
+        // The clock (a test's own, to pass the stop at a chosen moment).
+        std::function<std::chrono::steady_clock::time_point()> now = [] { return std::chrono::steady_clock::now(); };
     };
     // `polygons`, when given, gets the polygons of the leaves visited (a
     // polygon may come more than once).
@@ -184,6 +192,8 @@ class Solver {
     // cluster, what its ancestors' links bring to its facets.
     glm::dvec3 push(ElementId id, const Down& down, const FacetArrivals& facets, bool forced,
                     int depth, Walk& walk);
+    // Whether element `e` of a push on a deadline waits for a later push.
+    static bool pastPushDeadline(const HElement& e, bool forced, const PushDeadline& deadline);
     // Cluster levels (from the root) whose children are pushed in parallel.
     static constexpr int kParallelDepth = 8;
     // Sweeps in a row whose change grows before the solve calls it diverging.

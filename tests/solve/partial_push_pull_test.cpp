@@ -1,10 +1,13 @@
 // The partial push-pull (paper Fig. 7) on a deadline (solve/Solver.h): a
 // dirty element whose push would end after the deadline waits, unpushed,
-// with its subtree's radiosity as it was; the next partial push-pull pushes
-// it, and the result is the one a push without a deadline gives, to the bit.
+// with its subtree's radiosity as it was, and so does a large part of a
+// subtree pushed whole once the clock has passed the deadline; the next
+// partial push-pull pushes them, and the result is the one a push without a
+// deadline gives, to the bit.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <vector>
 
@@ -72,6 +75,42 @@ TEST(PartialPushPull, APushThatWouldPassTheDeadlineWaitsAndIsMadeLater) {
                                      1e-9};
     const std::vector<ElementId> pushed = late.solver.partialPushPull({}, later);
     EXPECT_EQ(pushed.size(), visited.size());
+    EXPECT_TRUE(late.solver.unpushed().empty());
+    EXPECT_EQ(late.radiosity(), expected);
+}
+
+// The clock passes the stop while a dirty wall's subtree, whose push was
+// expected to fit, is pushed whole: its children, each expected to take
+// longer than the push looks at the clock for, wait unpushed, and the next
+// push makes them. The result is again the one a push without a deadline
+// gives, to the bit.
+TEST(PartialPushPull, APushWholeStopsWhenTheClockPassesAndTheRestIsMadeLater) {
+    const Scene s = room();
+    Room onTime(s), late(s);
+    onTime.lightTheWall();
+    onTime.solver.partialPushPull({onTime.wall});
+    const std::vector<V> expected = onTime.radiosity();
+
+    late.lightTheWall();
+    const std::vector<ElementId> children = late.h[late.wall].children;
+    ASSERT_EQ(children.size(), 4u);
+    const auto start = std::chrono::steady_clock::now();
+    int reads = 0;
+    // Each child's subtree is expected to take twice as long as the push
+    // goes without looking at the clock; the wall's, four times that, fits
+    // in the second before the stop. The clock's first reading (the wall's)
+    // is before the stop, every later one after it.
+    Solver::PushDeadline deadline{start + std::chrono::seconds(1),
+                                  2.0 * Solver::kPushClockSeconds / late.h[children[0]].area};
+    deadline.now = [&] { return reads++ == 0 ? start : start + std::chrono::seconds(2); };
+    const std::vector<ElementId> visited = late.solver.partialPushPull({late.wall}, deadline);
+    EXPECT_NE(std::find(visited.begin(), visited.end(), late.wall), visited.end()) << "the wall itself was pushed";
+    EXPECT_EQ(late.solver.unpushed(), children);
+    for (ElementId c : children) EXPECT_EQ(std::find(visited.begin(), visited.end(), c), visited.end());
+    EXPECT_NE(late.radiosity(), expected) << "its children wait";
+
+    const Solver::PushDeadline later{std::chrono::steady_clock::now() + std::chrono::hours(1), 1e-9};
+    late.solver.partialPushPull({}, later);
     EXPECT_TRUE(late.solver.unpushed().empty());
     EXPECT_EQ(late.radiosity(), expected);
 }
