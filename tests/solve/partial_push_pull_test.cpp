@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <vector>
 
@@ -95,11 +96,12 @@ TEST(PartialPushPull, APushWholeStopsWhenTheClockPassesAndTheRestIsMadeLater) {
     const std::vector<ElementId> children = late.h[late.wall].children;
     ASSERT_EQ(children.size(), 4u);
     const auto start = std::chrono::steady_clock::now();
-    int reads = 0;
+    std::atomic<int> reads{0};
     // Each child's subtree is expected to take twice as long as the push
     // goes without looking at the clock; the wall's, four times that, fits
     // in the second before the stop. The clock's first reading (the wall's)
-    // is before the stop, every later one after it.
+    // is before the stop, every later one after it (atomic: the push may
+    // walk the room's polygons on several threads).
     Solver::PushDeadline deadline{start + std::chrono::seconds(1),
                                   2.0 * Solver::kPushClockSeconds / late.h[children[0]].area};
     deadline.now = [&] { return reads++ == 0 ? start : start + std::chrono::seconds(2); };
