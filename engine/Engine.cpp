@@ -759,7 +759,6 @@ const SolveStats& Engine::solve(const Progress& progress) {
     }
     s.hierarchy.compact();
     s.links.compact();
-    st.memory = {s.hierarchy.memoryBytes(), s.links.memoryBytes() + s.lightLinks.memoryBytes()};
     st.energy = energy();
     for (Warning& w : backFaceWarnings(s.scene, st.energy, kBackFaceWarningShare)) st.warnings.push_back(std::move(w));
     for (Warning& w : escapingLightWarnings(s.scene, st.energy, kEscapingWarningShare)) st.warnings.push_back(std::move(w));
@@ -781,6 +780,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
     s.hierarchy.clearReshaped();
     s.meshValid = true;
     s.updater.prepare();
+    st.memory = memory();  // the update's marks included
     // First guess of a further bounce's cost, until a frame makes one: a
     // sweep of the solve (every link gathered, everything pushed), which a
     // bounce from part of the scene costs at most. A guess of nothing would
@@ -1361,7 +1361,10 @@ EnergyBalance Engine::energy() const {
     return e;
 }
 MemoryStats Engine::memory() const {
-    return {state_->hierarchy.memoryBytes(), state_->links.memoryBytes() + state_->lightLinks.memoryBytes()};
+    const State& s = *state_;
+    const MemoryStats update = s.updater.memory();
+    return {s.hierarchy.memoryBytes() + update.elements,
+            s.links.memoryBytes() + s.lightLinks.memoryBytes() + update.links};
 }
 std::size_t Engine::linkCount() const { return state_->links.liveCount(); }
 

@@ -50,7 +50,7 @@ FrameStats LineSpaceUpdate::run(const std::vector<ObjectMotion>& motions,
     response_.clear();  // links change: what an edit sent no longer scales
     FrameStats stats;
     setDeadline(start, settings);
-    ++frame_;
+    nextFrame();
     motions_ = motions;
     if (layersChanged_) layersChangedFrame_ = frame_;
     for (const ObjectMotion& m : motions) {
@@ -499,6 +499,12 @@ void LineSpaceUpdate::prepare() {
     refiner_.recordSendersChanged();  // for the sum of what the unsent have to send
 }
 
+MemoryStats LineSpaceUpdate::memory() const {
+    return {waitingChange_.memoryBytes() + isTouched_.memoryBytes() + powerScratch_.memoryBytes() +
+                sending_.memoryBytes() + unsent_.memoryBytes() + polygonStamp_.capacity() * sizeof(std::uint32_t),
+            linkStamp_.memoryBytes() + staleMark_.memoryBytes()};
+}
+
 void LineSpaceUpdate::clustersMoved(ElementId objectCluster) {
     if (unsent_.empty()) return;
     std::vector<ElementId> moved;
@@ -544,7 +550,7 @@ FrameStats LineSpaceUpdate::refinePending(const UpdateSettings& settings, bool i
     stats.budget = budget;
     const auto left = [&] { return budgetLeft(budget, stats.spent); };
     setDeadline(start, settings);
-    ++frame_;
+    nextFrame();
     candidates_.clear();
     modified_.clear();
     linkStamp_.resize(links_.slots(), 0);
@@ -587,7 +593,7 @@ FrameStats LineSpaceUpdate::propagate(const std::vector<ElementId>& elements, co
     const std::size_t budget = settings.budget.value_or(kUnlimited);
     stats.budget = budget;
     setDeadline(start, settings);
-    ++frame_;
+    nextFrame();
     candidates_.clear();
     modified_.clear();
     linkStamp_.resize(links_.slots(), 0);
@@ -729,11 +735,22 @@ void LineSpaceUpdate::clearTouched() {
 
 // Links made during the frame (refinement) have ids past the stamps sized
 // when it began.
-bool LineSpaceUpdate::stampedThisFrame(LinkId id) const { return id < linkStamp_.size() && linkStamp_[id] == frame_; }
+bool LineSpaceUpdate::stampedThisFrame(LinkId id) const { return id < linkStamp_.size() && linkStamp_[id] == stampNow_; }
 
 void LineSpaceUpdate::stamp(LinkId id) {
     if (id >= linkStamp_.size()) linkStamp_.resize(links_.slots(), 0);
-    linkStamp_[id] = frame_;
+    linkStamp_[id] = stampNow_;
+}
+
+void LineSpaceUpdate::nextFrame() {
+    ++frame_;
+    // A stamp is a byte (a link slot's scratch is what a link costs): once
+    // in 255 frames every stamp is wiped, so that none left from 255 frames
+    // ago reads as this frame's.
+    if (++stampNow_ == 0) {
+        linkStamp_.assign(linkStamp_.size(), 0);
+        stampNow_ = 1;
+    }
 }
 
 }  // namespace rad

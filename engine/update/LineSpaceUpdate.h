@@ -153,6 +153,9 @@ public:
     // frame of a drag does not pay for touching them (in the building floor,
     // 7M links, it paid 35 ms).
     void prepare();
+    // What the update keeps beside the hierarchy and the links: its marks
+    // and sums per element, and per link slot (the stamps and stale marks).
+    MemoryStats memory() const;
     // What a further bounce (per link leaving its senders), and the push of
     // the receivers waiting for one, are expected to cost before one was
     // measured: a sweep of the solve, `seconds` over `links` active links.
@@ -436,11 +439,13 @@ private:
     // traversal keeps.
     std::vector<std::uint32_t> polygonStamp_;
     std::uint32_t pushFrame_ = 0;
-    // Frame in which a link became a candidate (written by concurrent visits:
-    // each stamps only its own links).
-    ChunkedArray<std::uint32_t, 14> linkStamp_;
+    // Per link slot: stampNow_ if the link became a candidate this frame
+    // (written by concurrent visits: each stamps only its own links).
+    ChunkedArray<std::uint8_t, 16> linkStamp_;
+    std::uint8_t stampNow_ = 0;  // this frame's stamp, 1 to 255
     bool stampedThisFrame(LinkId id) const;
     void stamp(LinkId id);
+    void nextFrame();  // ++frame_, and the next stamp
     std::vector<LinkId> candidates_;
     std::size_t shaftTests_ = 0;
     std::size_t reinstated_ = 0;

@@ -53,6 +53,10 @@ class UnsentSet {
     using Term = std::function<double(ElementId)>;
     double sum(const Term& term);
 
+    std::size_t memoryBytes() const {
+        return term_.memoryBytes() + (members_.capacity() + recount_.capacity()) * sizeof(ElementId);
+    }
+
   private:
     static constexpr double kNotMember = std::numeric_limits<double>::quiet_NaN();
     std::vector<ElementId> members_;
