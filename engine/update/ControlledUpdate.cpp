@@ -161,6 +161,15 @@ void LineSpaceUpdate::spendOn(std::size_t index, std::size_t budget,
     }
 }
 
+void LineSpaceUpdate::markStale(LinkId id, bool stale) {
+    if (id / 64 >= staleBits_.size()) {
+        if (!stale) return;
+        staleBits_.resize((links_.slots() + 63) / 64, 0);
+    }
+    const std::uint64_t bit = std::uint64_t(1) << (id % 64);
+    staleBits_[id / 64] = stale ? staleBits_[id / 64] | bit : staleBits_[id / 64] & ~bit;
+}
+
 void LineSpaceUpdate::defer(std::size_t index) {
     const std::size_t before = stale_.size();
     std::vector<std::size_t> stack{index};
@@ -169,9 +178,8 @@ void LineSpaceUpdate::defer(std::size_t index) {
         stack.pop_back();
         for (const std::vector<LinkId>* list : {&v.affected, &v.candidates})
             for (LinkId id : *list) {
-                if (id >= staleMark_.size()) staleMark_.resize(links_.slots(), 0);
-                if (staleMark_[id]) continue;
-                staleMark_[id] = 1;
+                if (isStale(id)) continue;
+                markStale(id, true);
                 stale_.push_back({id, frame_, motionBefore_, 0.0});
             }
         for (const Group& g : v.groups)
@@ -214,7 +222,7 @@ std::size_t LineSpaceUpdate::catchUp(std::size_t budget, FrameStats& stats) {
         while (!stale_.empty() && batch.size() < chunk && (batch.size() < kLeastChunk || cost < units)) {
             const auto [id, frame, at, transfer] = stale_.front();
             stale_.pop_front();
-            if (id < staleMark_.size()) staleMark_[id] = 0;
+            markStale(id, false);
             if (!links_[id].live) continue;
             const bool full = changedSince(links_[id], frame);
             batch.emplace_back(id, full);

@@ -484,7 +484,7 @@ void LineSpaceUpdate::joinUnsent(ElementId e, std::size_t links) {
 void LineSpaceUpdate::prepare() {
     carried_.clear();
     linkStamp_.assign(links_.slots(), 0);
-    staleMark_.assign(links_.slots(), 0);
+    staleBits_.assign((links_.slots() + 63) / 64, 0);
     // The marks and sums per element, made here and not in the first frames
     // that need them: fresh memory costs a page fault per 4 KiB (about 11 us
     // on this project's machines), and on the building floor (623,000
@@ -502,7 +502,7 @@ void LineSpaceUpdate::prepare() {
 MemoryStats LineSpaceUpdate::memory() const {
     return {waitingChange_.memoryBytes() + isTouched_.memoryBytes() + powerScratch_.memoryBytes() +
                 sending_.memoryBytes() + unsent_.memoryBytes() + polygonStamp_.capacity() * sizeof(std::uint32_t),
-            linkStamp_.memoryBytes() + staleMark_.memoryBytes()};
+            linkStamp_.memoryBytes() + staleBits_.memoryBytes()};
 }
 
 void LineSpaceUpdate::clustersMoved(ElementId objectCluster) {

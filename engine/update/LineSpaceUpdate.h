@@ -548,7 +548,10 @@ private:
     // The motion clock: the sum over moves of the largest motionShare of the
     // objects moved; and its value before the last move.
     double motion_ = 0.0, motionBefore_ = 0.0;
-    ChunkedArray<std::uint8_t, 16> staleMark_;
+    // Per link slot, one bit: in stale_ (serial: defer() and catchUp()).
+    ChunkedArray<std::uint64_t, 13> staleBits_;
+    bool isStale(LinkId id) const { return id / 64 < staleBits_.size() && (staleBits_[id / 64] >> (id % 64) & 1u); }
+    void markStale(LinkId id, bool stale);
     mutable ChunkedArray<double, 12> powerScratch_;  // estimatedError's per-element sums, zero between calls
     ChunkedArray<char, 16> sending_;                // bounce()'s per-element marks, zero between calls
     mutable std::optional<double> meanReflectance_;  // estimatedError's, over the polygons' area
