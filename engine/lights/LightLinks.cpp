@@ -71,12 +71,13 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
     // Per point: cos(theta) falloff / r^2, unoccluded; the distance kept off
     // zero for a light that sits on the surface (its cosine is zero there).
     const double floor2 = 1e-6 * e.area;
+    const PunctualLight::Cone falloff = light.cone();
     const auto unoccluded = [&](const glm::dvec3& p) {
         const glm::dvec3 d = light.position - p;
         const double r2 = std::max(glm::dot(d, d), floor2);
         const glm::dvec3 toward = d / std::sqrt(r2);
         const double cosTheta = glm::dot(e.normal, toward);
-        return cosTheta > 0.0 ? light.falloff(-toward) * cosTheta / r2 : 0.0;
+        return cosTheta > 0.0 ? falloff(-toward) * cosTheta / r2 : 0.0;
     };
     std::array<RayCaster::Segment, RayCaster::kMaxSegments> segments;
     // Bit k: the k-th of the first n segments meets something, in either layer.

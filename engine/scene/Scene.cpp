@@ -152,10 +152,16 @@ std::optional<std::uint32_t> Scene::findLight(const std::string& name) const {
     return std::nullopt;
 }
 
-double PunctualLight::falloff(const glm::dvec3& toward) const {
-    if (type == Type::Point) return 1.0;
+double PunctualLight::falloff(const glm::dvec3& toward) const { return cone()(toward); }
+
+PunctualLight::Cone PunctualLight::cone() const {
+    if (type == Type::Point) return {};
+    return {direction, std::cos(innerCone), std::cos(outerCone), true};
+}
+
+double PunctualLight::Cone::operator()(const glm::dvec3& toward) const {
+    if (!spot) return 1.0;
     const double c = glm::dot(direction, toward);
-    const double cosInner = std::cos(innerCone), cosOuter = std::cos(outerCone);
     if (c >= cosInner) return 1.0;
     if (c <= cosOuter) return 0.0;
     const double t = (c - cosOuter) / std::max(1e-12, cosInner - cosOuter);
