@@ -93,6 +93,13 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
     return frame;
 }
 
+// Each frame's whole time (FrameStats::totalSeconds), in order.
+std::vector<double> frameSeconds(const AnimationRun& run) {
+    std::vector<double> seconds;
+    for (const FrameRecord& r : run.frames) seconds.push_back(r.stats.totalSeconds);
+    return seconds;
+}
+
 // Frames longer than their target frame time by more than kOverTarget: the
 // controlled-update issue holds the 95th percentile within 10% of it.
 constexpr double kOverTarget = 1.1;
@@ -104,11 +111,11 @@ std::size_t framesOverTarget(const AnimationRun& run) {
 
 Report makeReport(const AnimateSettings& s, const Scene& scene, const AnimationRun& run) {
     Report frames = Report::array();
-    std::vector<double> totals, fullTimes, errors, objectErrors;
+    const std::vector<double> totals = frameSeconds(run);
+    std::vector<double> fullTimes, errors, objectErrors;
     for (std::size_t i = 0; i < run.frames.size(); ++i) {
         const FrameRecord& r = run.frames[i];
         frames.push_back(frameReport(int(i) + 1, r, scene));
-        totals.push_back(r.stats.totalSeconds);
         if (r.error) {
             fullTimes.push_back(*r.fullSolveSeconds);
             errors.push_back(r.error->rms);
@@ -206,8 +213,7 @@ int animate(const AnimateSettings& settings) {
 
     printWarnings(run.initial.warnings);
     if (!run.frames.empty()) {
-        std::vector<double> totals;
-        for (const FrameRecord& r : run.frames) totals.push_back(r.stats.totalSeconds);
+        const std::vector<double> totals = frameSeconds(run);
         std::printf("frames: median %.3f s, 95th percentile %.3f s, worst %.3f s", median(totals),
                     percentile(totals, 0.95), *std::max_element(totals.begin(), totals.end()));
         if (s.control.targetFps)
