@@ -260,7 +260,7 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
     e.reflectance = surfaceReflectance(scene, polygon, e.corners());
     e.emission = m.emission;
     const ElementId id = add(std::move(e), bounds);
-    quadrature_[id] = quadraturePoints(elements_[id].patch);
+    quadrature_[id] = pack(quadraturePoints(elements_[id].patch), elements_[id].patch.v[0]);
     polygonElements_[polygon] = id;
     polygonLeaves_[polygon] = 1;
     meshTouched_[polygon] = 1;
@@ -546,7 +546,7 @@ void Hierarchy::updateGeometry(ElementId id, bool turned) {
         box = Aabb{};
         for (int i = 0; i < e.patch.n; ++i) box.extend(e.patch.v[i]);
         e.center = patchCentroid(e.patch);
-        quadrature_[id] = quadraturePoints(e.patch);
+        quadrature_[id] = pack(quadraturePoints(e.patch), e.patch.v[0]);
         meshTouched_[e.polygon] = 1;  // the same polygon from one thread only: disjoint subtrees
     }
     // The subtrees are disjoint: a moved object's clusters, whose

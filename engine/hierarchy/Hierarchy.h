@@ -57,8 +57,9 @@ public:
     // An element's index range (sec. 3.2) and box, kept apart (ElementBounds).
     const IndexRange& range(ElementId id) const { return bounds_[id].range; }
     const Aabb& box(ElementId id) const { return bounds_[id].box; }
-    // A surface's quadraturePoints, made with its patch (none for a cluster).
-    const QuadraturePoints& quadrature(ElementId id) const { return quadrature_[id]; }
+    // A surface's quadraturePoints, made with its patch (none for a cluster);
+    // kept packed (PackedQuadrature).
+    QuadraturePoints quadrature(ElementId id) const { return unpack(quadrature_[id], elements_[id].patch.v[0]); }
     std::size_t size() const { return elements_.size(); }
     std::size_t liveCount() const { return elements_.size() - free_.size(); }
     // Not freed (every element but the root has a parent until release()).
@@ -218,7 +219,7 @@ private:
     // copy them all.
     ChunkedArray<HElement, 8> elements_;
     ChunkedArray<ElementBounds, 8> bounds_;          // parallel to elements_
-    ChunkedArray<QuadraturePoints, 8> quadrature_;  // parallel to elements_
+    ChunkedArray<PackedQuadrature, 8> quadrature_;  // parallel to elements_
     ChunkedArray<glm::dvec3, 8> direct_;            // parallel to elements_ once a light link exists
     std::vector<ElementId> free_;
     std::uint64_t releases_ = 0;

@@ -227,6 +227,22 @@ QuadraturePoints quadraturePoints(const PatchGeometry& patch) {
     return q;
 }
 
+PackedQuadrature pack(const QuadraturePoints& points, const glm::dvec3& origin) {
+    PackedQuadrature packed;
+    for (const SamplePoint& s : points) {
+        packed.offset[packed.count] = glm::vec3(s.p - origin);
+        packed.weight[packed.count++] = static_cast<float>(s.w);
+    }
+    return packed;
+}
+
+QuadraturePoints unpack(const PackedQuadrature& packed, const glm::dvec3& origin) {
+    QuadraturePoints points;
+    for (; points.count < packed.count; ++points.count)
+        points.points[points.count] = {origin + glm::dvec3(packed.offset[points.count]), packed.weight[points.count]};
+    return points;
+}
+
 namespace {
 
 // The mean, least and largest form factor from the receiver's points to the source.

@@ -79,6 +79,20 @@ struct QuadraturePoints {
 };
 QuadraturePoints quadraturePoints(const PatchGeometry& patch);
 
+// QuadraturePoints as an element keeps them (Hierarchy::quadrature): each
+// point's offset from the patch's first corner, and its weight, in single
+// precision; 68 bytes instead of 136 (1.8 bytes a link in `office`). An
+// offset is within 6e-8 of the element's size, sixteen times finer than the
+// tolerance within which a ray's end counts as on a surface (RayCaster's
+// coincidenceOfSize, 1e-6 of the polygon's size).
+struct PackedQuadrature {
+    std::array<glm::vec3, 4> offset{};
+    std::array<float, 4> weight{};
+    std::uint32_t count = 0;
+};
+PackedQuadrature pack(const QuadraturePoints& points, const glm::dvec3& origin);
+QuadraturePoints unpack(const PackedQuadrature& packed, const glm::dvec3& origin);
+
 // estimateFormFactor with the receiver's points given: its quadraturePoints.
 FormFactorEstimate estimateFormFactor(const QuadraturePoints& receiverPoints, const PatchGeometry& receiver,
                                       const PatchGeometry& source);

@@ -115,7 +115,7 @@ void measureOne(Hierarchy& h, const RayCaster& rays, ElementId id, bool staticKn
                 memberAt(h, id, k, (j + 0.5) / kPointsPerFacet * shape.facets[k].area);
             if (member == kNone) continue;
             const HElement& surface = h[member];
-            const QuadraturePoints& q = h.quadrature(member);
+            const QuadraturePoints q = h.quadrature(member);
             const glm::dvec3 p =
                 q.size() > 0 ? q.points[std::size_t(j) % q.size()].p : surface.center;
             const glm::dvec3 normal = surface.normal;
