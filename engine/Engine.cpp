@@ -1362,9 +1362,7 @@ EnergyBalance Engine::energy() const {
 }
 MemoryStats Engine::memory() const {
     const State& s = *state_;
-    const MemoryStats update = s.updater.memory();
-    return {s.hierarchy.memoryBytes() + update.elements,
-            s.links.memoryBytes() + s.lightLinks.memoryBytes() + update.links};
+    return {s.hierarchy.memoryBytes(), s.links.memoryBytes() + s.lightLinks.memoryBytes(), s.updater.memoryBytes()};
 }
 std::size_t Engine::linkCount() const { return state_->links.liveCount(); }
 

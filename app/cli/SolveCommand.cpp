@@ -67,7 +67,7 @@ Report makeReport(const SolveSettings& s, const Engine& engine, const ImportNote
           {"refine", st.refineSeconds},
           {"solve", st.solveSeconds},
           {"total", totalSeconds}}},
-        {"memory_bytes", {{"total", st.memory.total()}, {"elements", st.memory.elements}, {"links", st.memory.links}}},
+        {"memory_bytes", {{"total", st.memory.total()}, {"elements", st.memory.elements}, {"links", st.memory.links}, {"update", st.memory.update}}},
         {"energy",
          {{"emitted", st.energy.emitted},
           {"received", st.energy.received},

@@ -162,12 +162,9 @@ void LineSpaceUpdate::spendOn(std::size_t index, std::size_t budget,
 }
 
 void LineSpaceUpdate::markStale(LinkId id, bool stale) {
-    if (id / 64 >= staleBits_.size()) {
-        if (!stale) return;
-        staleBits_.resize((links_.slots() + 63) / 64, 0);
-    }
-    const std::uint64_t bit = std::uint64_t(1) << (id % 64);
-    staleBits_[id / 64] = stale ? staleBits_[id / 64] | bit : staleBits_[id / 64] & ~bit;
+    if (!stale && !isStale(id)) return;
+    staleMarks_.cover(links_.slots());
+    staleMarks_.set(id, stale);
 }
 
 void LineSpaceUpdate::defer(std::size_t index) {

@@ -25,6 +25,7 @@
 #include "radiosity/Settings.h"
 #include "radiosity/Stats.h"
 #include "update/EditResponse.h"
+#include "update/LinkBits.h"
 #include "update/UnsentSet.h"
 
 namespace rad {
@@ -155,7 +156,7 @@ public:
     void prepare();
     // What the update keeps beside the hierarchy and the links: its marks
     // and sums per element, and per link slot (the stamps and stale marks).
-    MemoryStats memory() const;
+    std::size_t memoryBytes() const;
     // What a further bounce (per link leaving its senders), and the push of
     // the receivers waiting for one, are expected to cost before one was
     // measured: a sweep of the solve, `seconds` over `links` active links.
@@ -439,13 +440,12 @@ private:
     // traversal keeps.
     std::vector<std::uint32_t> polygonStamp_;
     std::uint32_t pushFrame_ = 0;
-    // Per link slot: stampNow_ if the link became a candidate this frame
-    // (written by concurrent visits: each stamps only its own links).
-    ChunkedArray<std::uint8_t, 16> linkStamp_;
-    std::uint8_t stampNow_ = 0;  // this frame's stamp, 1 to 255
-    bool stampedThisFrame(LinkId id) const;
+    // Per link slot, set if the link became a candidate in this frame
+    // (cleared by nextFrame; set by concurrent visits of the traversal).
+    LinkBits stamps_;
+    bool stampedThisFrame(LinkId id) const { return stamps_.test(id); }
     void stamp(LinkId id);
-    void nextFrame();  // ++frame_, and the next stamp
+    void nextFrame();  // ++frame_, and no link stamped
     std::vector<LinkId> candidates_;
     std::size_t shaftTests_ = 0;
     std::size_t reinstated_ = 0;
@@ -548,9 +548,9 @@ private:
     // The motion clock: the sum over moves of the largest motionShare of the
     // objects moved; and its value before the last move.
     double motion_ = 0.0, motionBefore_ = 0.0;
-    // Per link slot, one bit: in stale_ (serial: defer() and catchUp()).
-    ChunkedArray<std::uint64_t, 13> staleBits_;
-    bool isStale(LinkId id) const { return id / 64 < staleBits_.size() && (staleBits_[id / 64] >> (id % 64) & 1u); }
+    // Per link slot, set if in stale_ (serial: defer() and catchUp()).
+    LinkBits staleMarks_;
+    bool isStale(LinkId id) const { return staleMarks_.test(id); }
     void markStale(LinkId id, bool stale);
     mutable ChunkedArray<double, 12> powerScratch_;  // estimatedError's per-element sums, zero between calls
     ChunkedArray<char, 16> sending_;                // bounce()'s per-element marks, zero between calls

@@ -167,8 +167,10 @@ std::size_t LineSpaceUpdate::visitNode(Visit& v, std::vector<std::pair<ElementId
     for (std::size_t k = 0; k < active.size(); ++k) {
         links_.prefetchAhead(active, k);
         const LinkId id = active[k];
-        if (linkStamp_[id] == stampNow_ || !affectedByMotion(links_[id].source, v.he, tests)) continue;
-        linkStamp_[id] = stampNow_;  // older than the frame: within the stamps
+        // Older than the frame: within the stamps.
+        if (stamps_.testConcurrently(id) || !affectedByMotion(links_[id].source, v.he, tests) ||
+            !stamps_.setConcurrently(id))
+            continue;
         v.candidates.push_back(id);
     }
     // Descend once per maximal range: a p-link refined by splitting its source

@@ -75,7 +75,8 @@ TEST(CliSolve, CornellBoxReportImageAndExport) {
     ASSERT_TRUE(jsonAt(json, "/memory_bytes/total").is_number_integer());
     EXPECT_GT(json["memory_bytes"]["total"], 0);
     EXPECT_EQ(json["memory_bytes"]["total"],
-              jsonAt(json, "/memory_bytes/elements").get<std::size_t>() + jsonAt(json, "/memory_bytes/links").get<std::size_t>());
+              jsonAt(json, "/memory_bytes/elements").get<std::size_t>() + jsonAt(json, "/memory_bytes/links").get<std::size_t>() +
+                  jsonAt(json, "/memory_bytes/update").get<std::size_t>());
     // Energy bookkeeping: absorbed + escaped = emitted, reflected + absorbed = received.
     const nlohmann::json& energy = json.at("energy");
     for (const char* key : {"emitted", "received", "absorbed", "reflected", "escaped", "back_faces", "lost", "created"})

@@ -52,9 +52,10 @@ struct Warning {
 };
 
 struct MemoryStats {
-    std::size_t elements = 0;  // H-elements and their link lists, and the update's marks and sums per element
-    std::size_t links = 0;     // links and p-links, the light links of punctual lights, the update's marks per link slot
-    std::size_t total() const { return elements + links; }
+    std::size_t elements = 0;  // H-elements and their link lists
+    std::size_t links = 0;     // links and p-links, the light links of punctual lights
+    std::size_t update = 0;    // the update's marks and sums per element, and its marks per link slot
+    std::size_t total() const { return elements + links + update; }
 };
 
 struct SolveStats {
