@@ -183,22 +183,21 @@ FrameStats LineSpaceUpdate::goOn(FrameStats stats, const UpdateSettings& setting
 void LineSpaceUpdate::recordOverlay(const std::vector<ElementId>& changed, bool append) {
     // Ids only: the segments are made when a display asks for them (a
     // frame that changes half the building floor would otherwise spend 0.1 s
-    // sorting outlines nobody draws). Bounded: a display of more than this
-    // says nothing more.
+    // sorting outlines nobody draws), and so is the choice of the leaves
+    // among them (reading whether each is one took 1 to 2 ms of such a
+    // frame's 33). Bounded: a display of more than this says nothing more.
     constexpr std::size_t kMaxRecorded = 200'000;
     if (!append) {
         overlayLinks_.clear();
-        overlayLeaves_.clear();
+        overlayChanged_.clear();
     }
     for (const std::vector<LinkId>* ids : {&modified_, &candidates_})
         for (LinkId id : *ids) {
             if (overlayLinks_.size() >= kMaxRecorded) break;
             overlayLinks_.push_back(id);
         }
-    for (ElementId e : changed) {
-        if (overlayLeaves_.size() >= kMaxRecorded) break;
-        if (h_[e].isSurface() && h_[e].isLeaf()) overlayLeaves_.push_back(e);
-    }
+    overlayChanged_.insert(overlayChanged_.end(), changed.begin(),
+                           changed.begin() + std::ptrdiff_t(std::min(changed.size(), kMaxRecorded - std::min(kMaxRecorded, overlayChanged_.size()))));
 }
 
 std::vector<std::array<glm::dvec3, 2>> LineSpaceUpdate::modifiedLinks() const {
@@ -223,10 +222,10 @@ std::vector<std::array<glm::dvec3, 2>> LineSpaceUpdate::changedOutlines() const 
     // edges, and a software rasteriser pays for every line.
     std::vector<std::array<glm::dvec3, 2>> edges;
     const auto key = [](const glm::dvec3& p) { return std::tie(p.x, p.y, p.z); };
-    for (ElementId e : overlayLeaves_) {
+    for (ElementId e : overlayChanged_) {
         if (e >= h_.size()) continue;
         const HElement& el = h_[e];
-        if (!el.isSurface() || !el.isLeaf()) continue;  // subdivided since
+        if (!el.isSurface() || !el.isLeaf()) continue;  // subdivided since, or never a leaf
         for (int k = 0; k < el.patch.n; ++k) {
             std::array<glm::dvec3, 2> edge{el.patch.v[k], el.patch.v[(k + 1) % el.patch.n]};
             if (key(edge[1]) < key(edge[0])) std::swap(edge[0], edge[1]);
@@ -479,6 +478,15 @@ double LineSpaceUpdate::shareThatFits(std::size_t changedLeaves, double work, do
 
 void LineSpaceUpdate::joinUnsent(ElementId e, std::size_t links) {
     if (unsent_.join(e)) unsentLinks_ += links;
+}
+
+void LineSpaceUpdate::holdUnsent(const std::vector<ElementId>& elements) {
+    // Their links counted by the mean per element (what sending them is
+    // expected to cost); one with none joins too: it has nothing to send.
+    std::size_t joined = 0;
+    for (ElementId e : elements) joined += unsent_.join(e);
+    const double mean = double(refiner_.activeLinks()) / double(std::max<std::size_t>(1, h_.liveCount()));
+    unsentLinks_ += static_cast<std::size_t>(std::llround(mean * double(joined)));
 }
 
 void LineSpaceUpdate::prepare() {
@@ -745,7 +753,8 @@ void LineSpaceUpdate::stamp(LinkId id) {
 void LineSpaceUpdate::nextFrame() {
     ++frame_;
     // A bit a link slot (a byte was 0.9 bytes a link more): wiping them
-    // all is 120 KB in `office`, under 1 MB on the building floor.
+    // all is 120 KB in `office`, 3 MB on the building floor (25 million
+    // slots).
     stamps_.clearAll();
 }
 

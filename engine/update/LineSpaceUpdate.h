@@ -503,9 +503,11 @@ private:
     // Mutable for the sum of what they have to send, which estimatedError
     // keeps up to date (unsentPower).
     mutable UnsentSet unsent_;
-    std::size_t unsentLinks_ = 0;  // leaving them, counted as they joined
+    std::size_t unsentLinks_ = 0;  // leaving them, counted (or estimated: holdUnsent) as they joined
     mutable std::uint64_t unsentReleases_ = 0;  // h_.releases() at unsent_'s last sum
     void joinUnsent(ElementId e, std::size_t links);
+    // All of them join, their lists of links not read.
+    void holdUnsent(const std::vector<ElementId>& elements);
     // The sum of unsentPowerOf(e, false) over the unsent elements.
     double unsentPower() const;
     // What choosing a bounce's senders took per element considered.
@@ -577,7 +579,7 @@ private:
     std::vector<LinkId> modified_;  // this frame's modified links, for the overlay
     std::vector<LinkId> overlayLinks_;       // what modifiedLinks() draws
     bool overlayLinkLive(LinkId id) const { return id < links_.slots() && links_[id].live; }
-    std::vector<ElementId> overlayLeaves_;   // what changedOutlines() draws
+    std::vector<ElementId> overlayChanged_;  // changedOutlines() draws the leaves among them
     // The overlay segments of this frame's modified links and changed
     // elements; `append`: added to those on show (catching up after a move).
     void recordOverlay(const std::vector<ElementId>& changed, bool append);
