@@ -64,18 +64,24 @@ Solver::Down Solver::surfaceDown(ElementId id, const Down& down) const {
     return d;
 }
 
-bool Solver::pastPushDeadline(const HElement& e, bool forced, const PushDeadline& deadline) {
+bool Solver::pastPushDeadline(const HElement& e, bool forced, Walk& walk) {
     // A dirty element waits when its subtree's push, by its area at the
     // last pushes' rate, would end past the stop. Inside a subtree pushed
-    // whole, an element with a large subtree of its own waits when the stop
-    // has passed: the estimate by area is of the scene's mean density, and
+    // whole, an element with a large subtree of its own, or the
+    // kPushClockEvery-th since the clock was read, waits when the stop has
+    // passed: the estimate by area is of the scene's mean density, and
     // around a moving object, where the hierarchy is finest, building-floor
-    // pushes ran up to 20 ms past it.
+    // pushes ran up to 20 ms past it (5 ms with the large subtrees alone).
+    // Once the clock has passed, every element after it waits.
     if (!forced && !e.dirty) return false;
+    if (walk.late) return true;
+    const PushDeadline& deadline = *walk.deadline;
     const double expected = e.area * deadline.secondsPerArea;
-    if (forced && expected < kPushClockSeconds) return false;
+    if (forced && expected < kPushClockSeconds && ++walk.sinceClock < kPushClockEvery) return false;
+    walk.sinceClock = 0;
     const auto now = deadline.now();
-    if (forced) return now > deadline.stop;
+    walk.late = now > deadline.stop;
+    if (forced) return walk.late;
     return now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(expected)) >
            deadline.stop;
 }
@@ -84,7 +90,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
                         int depth, Walk& walk) {
     HElement& e = h_[id];
     if (!forced && !e.changed) return e.radiosity;
-    if (walk.deadline && pastPushDeadline(e, forced, *walk.deadline)) {
+    if (walk.deadline && pastPushDeadline(e, forced, walk)) {
         // Marked again by the next partial push-pull; meanwhile it is an
         // element like any other (a link update may mark it dirty, and so
         // have its irradiance summed again before that push).
@@ -129,6 +135,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
                 walks[i].deadline = walk.deadline;
                 walks[i].unpushed = walk.unpushed ? &unpushed[i] : nullptr;
                 walks[i].polygons = walk.polygons ? &polygons[i] : nullptr;
+                walks[i].late = walk.late;
                 childB[i] =
                     push(children[i], surfaceDown[i], clusterDown[i], below, depth + 1, walks[i]);
             });
@@ -137,6 +144,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
                 area += h_[children[i]].area;
                 walk.change += walks[i].change;
                 walk.total += walks[i].total;
+                walk.late = walk.late || walks[i].late;
                 if (walk.visited)
                     walk.visited->insert(walk.visited->end(), visited[i].begin(), visited[i].end());
                 if (walk.unpushed)

@@ -117,5 +117,62 @@ TEST(PartialPushPull, APushWholeStopsWhenTheClockPassesAndTheRestIsMadeLater) {
     EXPECT_EQ(late.radiosity(), expected);
 }
 
+// A subtree pushed whole of many small elements, none expected to take as
+// long as the push goes without looking at the clock: the clock is read
+// every kPushClockEvery elements all the same, and once it has passed the
+// stop the rest waits, unpushed (an estimate by area misjudges the dense
+// hierarchy around a moving object). The next push makes them, and the
+// result is the one a push without a deadline gives, to the bit.
+TEST(PartialPushPull, ManySmallElementsPushedWholeStopWhenTheClockPasses) {
+    const Scene s = room();
+    Room onTime(s), late(s);
+    // The wall three levels deep: 85 elements.
+    for (Room* r : {&onTime, &late}) {
+        std::vector<ElementId> level{r->wall};
+        for (int depth = 0; depth < 3; ++depth) {
+            std::vector<ElementId> next;
+            for (ElementId e : level) {
+                if (r->h[e].isLeaf()) r->h.subdivide(e);
+                next.insert(next.end(), r->h[e].children.begin(), r->h[e].children.end());
+            }
+            level = next;
+        }
+        ASSERT_EQ(level.size(), 64u);
+        r->solver.pushPull();
+    }
+    onTime.lightTheWall();
+    onTime.solver.partialPushPull({onTime.wall});
+    const std::vector<V> expected = onTime.radiosity();
+
+    late.lightTheWall();
+    const auto start = std::chrono::steady_clock::now();
+    std::atomic<int> reads{0};
+    // The wall's push is expected to take a nanosecond; the clock's first
+    // reading (the wall's) is before the stop, every later one after it.
+    Solver::PushDeadline deadline{start + std::chrono::seconds(1), 1e-9 / late.h[late.wall].area};
+    deadline.now = [&] { return reads++ == 0 ? start : start + std::chrono::seconds(2); };
+    const std::vector<ElementId> visited = late.solver.partialPushPull({late.wall}, deadline);
+    EXPECT_EQ(reads.load(), 2) << "the wall's reading, and one after kPushClockEvery elements";
+    std::vector<ElementId> below;  // the wall's subtree, the wall left out
+    for (std::vector<ElementId> stack = late.h[late.wall].children; !stack.empty();) {
+        below.push_back(stack.back());
+        stack.pop_back();
+        stack.insert(stack.end(), late.h[below.back()].children.begin(), late.h[below.back()].children.end());
+    }
+    ASSERT_EQ(below.size(), 84u);
+    const auto pushedBelow = std::count_if(visited.begin(), visited.end(), [&](ElementId e) {
+        return std::find(below.begin(), below.end(), e) != below.end();
+    });
+    EXPECT_GT(pushedBelow, 0);
+    EXPECT_LT(pushedBelow, std::ptrdiff_t(Solver::kPushClockEvery));
+    EXPECT_FALSE(late.solver.unpushed().empty());
+    EXPECT_NE(late.radiosity(), expected) << "part of the wall waits";
+
+    const Solver::PushDeadline later{std::chrono::steady_clock::now() + std::chrono::hours(1), 1e-9};
+    late.solver.partialPushPull({}, later);
+    EXPECT_TRUE(late.solver.unpushed().empty());
+    EXPECT_EQ(late.radiosity(), expected);
+}
+
 }  // namespace
 }  // namespace rad
