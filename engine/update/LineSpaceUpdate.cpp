@@ -196,8 +196,9 @@ void LineSpaceUpdate::recordOverlay(const std::vector<ElementId>& changed, bool 
             if (overlayLinks_.size() >= kMaxRecorded) break;
             overlayLinks_.push_back(id);
         }
-    overlayChanged_.insert(overlayChanged_.end(), changed.begin(),
-                           changed.begin() + std::ptrdiff_t(std::min(changed.size(), kMaxRecorded - std::min(kMaxRecorded, overlayChanged_.size()))));
+    const std::size_t room = kMaxRecorded - std::min(kMaxRecorded, overlayChanged_.size());
+    const std::size_t taken = std::min(changed.size(), room);
+    overlayChanged_.insert(overlayChanged_.end(), changed.begin(), changed.begin() + std::ptrdiff_t(taken));
 }
 
 std::vector<std::array<glm::dvec3, 2>> LineSpaceUpdate::modifiedLinks() const {

@@ -167,7 +167,8 @@ std::size_t LineSpaceUpdate::visitNode(Visit& v, std::vector<std::pair<ElementId
     for (std::size_t k = 0; k < active.size(); ++k) {
         links_.prefetchAhead(active, k);
         const LinkId id = active[k];
-        // Older than the frame: within the stamps.
+        // Found once a frame (a link older than the frame: its slot is
+        // within the stamps).
         if (stamps_.testConcurrently(id) || !affectedByMotion(links_[id].source, v.he, tests) ||
             !stamps_.setConcurrently(id))
             continue;
