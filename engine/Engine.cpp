@@ -1016,11 +1016,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // refine in it waits, pending, linked coarser.
     if (!s.scene.lights.empty()) {
         const auto lightDeadline = s.lightDeadline(start, settings, choosingSeconds);
-        std::vector<std::uint32_t> relinked = moved;
-        for (std::uint32_t p : s.lightLinks.shadedBy(boxes)) relinked.push_back(p);
-        std::sort(relinked.begin(), relinked.end());
-        relinked.erase(std::unique(relinked.begin(), relinked.end()), relinked.end());
-        std::vector<ElementId> changed = s.lightLinks.relink(relinked, std::nullopt, lightDeadline);
+        std::vector<ElementId> changed = s.lightLinks.relinkAround(moved, boxes, lightDeadline);
         for (const auto& [light, worldFromLocal] : lights) {
             PunctualLight& l = s.scene.lights[light];
             l.worldFromLocal = worldFromLocal;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 #include "geometry/Shaft.h"
 #include "links/FormFactor.h"
@@ -139,15 +140,35 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
 }
 
 void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>& polygons,
-                      std::optional<Clock::time_point> deadline) {
+                      std::optional<Clock::time_point> deadline, const Around* around) {
     const PunctualLight& light = scene_.lights[lightIndex];
     const double intensity = judgedIntensity(lightIndex);
     struct Item {
         std::uint32_t polygon;
         ElementId element;
+        bool mayKeep;  // its links may stay where its shaft misses the boxes
     };
+    // The links of the polygons that may keep theirs, as they were; an
+    // element whose shaft misses every box, and which holds one of them or
+    // lies above one (`reached`: the last linking came down to it, and so
+    // would this one), keeps those below it (kept). One with none there may
+    // lie below an element linked whole then and divided now: it is
+    // estimated again.
+    std::unordered_map<std::uint32_t, std::vector<LightLink>> old;
+    std::unordered_set<ElementId> reached;
+    std::vector<ElementId> kept;
     std::vector<Item> frontier;
     for (std::uint32_t p : polygons) {
+        bool mayKeep = around && !around->whole[p] && !pending_[lightIndex].contains(p);
+        if (mayKeep) {
+            std::vector<LightLink>& was = old[p];
+            if (const auto it = links_[lightIndex].find(p); it != links_[lightIndex].end()) was = it->second;
+            for (const LightLink& l : was) mayKeep = mayKeep && h_.isLive(l.receiver);
+            if (!mayKeep) old.erase(p);
+            for (const LightLink& l : was)
+                for (ElementId a = l.receiver; mayKeep && a != kNone && reached.insert(a).second; a = h_[a].parent)
+                    if (a == h_.polygonElement(p)) break;
+        }
         links_[lightIndex].erase(p);
         pending_[lightIndex].erase(p);
         if (!(intensity > 0.0) || h_.polygonElement(p) == kNone || !facesLight(light, p)) continue;
@@ -157,19 +178,35 @@ void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>
         const glm::dvec3 nearest = glm::clamp(light.position, box.lo, box.hi);
         const double d2 = glm::dot(nearest - light.position, nearest - light.position);
         if (d2 > 0.0 && intensity * poly.area() / d2 < kNegligible * threshold_) continue;
-        frontier.push_back({p, h_.polygonElement(p)});
+        frontier.push_back({p, h_.polygonElement(p), mayKeep});
     }
+    const Aabb at{light.position, light.position};
+    const auto missesBoxes = [&](ElementId e) {
+        for (const Aabb& b : around->boxes)
+            if (!b.empty() && Shaft::hullMeets(at, h_.box(e), b) && Shaft(at, h_.box(e)).intersects(b)) return false;
+        return true;
+    };
     std::vector<Estimate> estimates;
+    std::vector<std::uint8_t> keeps;
     while (!frontier.empty()) {
         estimates.assign(frontier.size(), Estimate{});
-        tbb::parallel_for(std::size_t(0), frontier.size(),
-                          [&](std::size_t i) { estimates[i] = estimate(light, frontier[i].element); });
+        keeps.assign(frontier.size(), 0);
+        tbb::parallel_for(std::size_t(0), frontier.size(), [&](std::size_t i) {
+            if (frontier[i].mayKeep && reached.contains(frontier[i].element) && missesBoxes(frontier[i].element))
+                keeps[i] = 1;
+            else
+                estimates[i] = estimate(light, frontier[i].element);
+        });
         std::vector<Item> next;
         // Past the deadline, this level is the last: what it would refine
         // is linked as it is and waits.
         const bool late = deadline && Clock::now() > *deadline;
         for (std::size_t i = 0; i < frontier.size(); ++i) {
-            const auto [polygon, e] = frontier[i];
+            const auto [polygon, e, mayKeep] = frontier[i];
+            if (keeps[i]) {
+                kept.push_back(e);
+                continue;
+            }
             const Estimate& est = estimates[i];
             bool refine = intensity * est.spread * h_[e].area > threshold_ && h_.canSubdivide(e);
             if (refine && late) {
@@ -178,7 +215,7 @@ void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>
             }
             if (refine) {
                 h_.subdivide(e);
-                for (ElementId c : h_[e].children) next.push_back({polygon, c});
+                for (ElementId c : h_[e].children) next.push_back({polygon, c, mayKeep});
             } else if (est.mean > 0.0) {
                 links_[lightIndex][polygon].push_back(
                     {e, static_cast<float>(est.mean), static_cast<float>(est.peak)});
@@ -186,6 +223,19 @@ void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>
         }
         frontier = std::move(next);
     }
+    // The links kept: those of a polygon that lie below (or on) a kept element.
+    keptLast_ += kept.size();
+    if (kept.empty()) return;
+    std::sort(kept.begin(), kept.end());
+    for (const auto& [p, was] : old)
+        for (const LightLink& l : was)
+            for (ElementId a = l.receiver; a != kNone; a = h_[a].parent) {
+                if (std::binary_search(kept.begin(), kept.end(), a)) {
+                    links_[lightIndex][p].push_back(l);
+                    break;
+                }
+                if (a == h_.polygonElement(p)) break;
+            }
 }
 
 double LightLinks::sumDirect(std::uint32_t polygon) {
@@ -223,6 +273,24 @@ void LightLinks::linkAll() {
 std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& polygons,
                                           std::optional<std::uint32_t> light,
                                           std::optional<Clock::time_point> deadline) {
+    return relink(polygons, light, deadline, nullptr);
+}
+
+std::vector<ElementId> LightLinks::relinkAround(const std::vector<std::uint32_t>& moved, const std::vector<Aabb>& boxes,
+                                                std::optional<Clock::time_point> deadline) {
+    std::vector<std::uint8_t> whole(scene_.polygons.size(), 0);
+    for (std::uint32_t p : moved) whole[p] = 1;
+    std::vector<std::uint32_t> polygons = moved;
+    for (std::uint32_t p : shadedBy(boxes)) polygons.push_back(p);
+    std::sort(polygons.begin(), polygons.end());
+    polygons.erase(std::unique(polygons.begin(), polygons.end()), polygons.end());
+    const Around around{boxes, whole};
+    keptLast_ = 0;
+    return relink(polygons, std::nullopt, deadline, &around);
+}
+
+std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& polygons, std::optional<std::uint32_t> light,
+                                          std::optional<Clock::time_point> deadline, const Around* around) {
     sizeTables();
     std::vector<ElementId> changed;
     if (scene_.lights.empty()) return changed;
@@ -231,10 +299,17 @@ std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& poly
     for (std::size_t l = 0; l < links_.size(); ++l)
         for (std::uint32_t p : polygons) before[l].push_back(linksOf(l, p));
     for (std::uint32_t l = 0; l < scene_.lights.size(); ++l)
-        if (!light || *light == l) link(l, polygons, deadline);
+        if (!light || *light == l) link(l, polygons, deadline, around);
+    // As sets: links kept below an element come after those made anew (a
+    // receiver has one link per light, so its direct light is the same sum).
+    const auto sorted = [](std::vector<LightLink> v) {
+        std::sort(v.begin(), v.end(), [](const LightLink& a, const LightLink& b) { return a.receiver < b.receiver; });
+        return v;
+    };
     for (std::size_t i = 0; i < polygons.size(); ++i) {
         bool same = true;
-        for (std::size_t l = 0; l < links_.size(); ++l) same = same && before[l][i] == linksOf(l, polygons[i]);
+        for (std::size_t l = 0; l < links_.size(); ++l)
+            same = same && sorted(before[l][i]) == sorted(linksOf(l, polygons[i]));
         if (same) continue;
         changes_.emplace_back(h_.polygonElement(polygons[i]), sumDirect(polygons[i]));
         changed.push_back(h_.polygonElement(polygons[i]));

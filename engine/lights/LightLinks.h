@@ -55,6 +55,16 @@ public:
     std::vector<ElementId> relink(const std::vector<std::uint32_t>& polygons,
                                   std::optional<std::uint32_t> light = std::nullopt,
                                   std::optional<Clock::time_point> deadline = std::nullopt);
+    // After objects moved (`boxes`: each one's box before and after), their
+    // polygons (`moved`) are linked again whole, and the polygons they shade
+    // or shaded (shadedBy) where an element's shaft toward a light meets a
+    // box: below an element whose shaft meets none, the links stay as they
+    // were (its rays and their occluders are as they were), which is what
+    // linking it again would give. Returns what relink returns.
+    std::vector<ElementId> relinkAround(const std::vector<std::uint32_t>& moved, const std::vector<Aabb>& boxes,
+                                        std::optional<Clock::time_point> deadline = std::nullopt);
+    // The elements whose links the last relinkAround kept (not estimated again).
+    std::size_t keptLastRelink() const { return keptLast_; }
     // Every polygon, for one light (it moved).
     std::vector<ElementId> relinkLight(std::uint32_t light, std::optional<Clock::time_point> deadline = std::nullopt);
     // Links the pending polygons again, refined to the threshold, a few at a
@@ -122,8 +132,16 @@ private:
     int shareLevel(std::uint32_t light) const;
     // Refines the links of one light to the given polygons, level by level:
     // the estimates of a level on all cores, its subdivisions in order.
+    // With `around`, polygons not flagged in `around->whole` (not pending)
+    // keep their links below elements whose shaft misses `around->boxes`.
+    struct Around {
+        const std::vector<Aabb>& boxes;
+        const std::vector<std::uint8_t>& whole;  // per polygon
+    };
     void link(std::uint32_t light, const std::vector<std::uint32_t>& polygons,
-              std::optional<Clock::time_point> deadline);
+              std::optional<Clock::time_point> deadline, const Around* around = nullptr);
+    std::vector<ElementId> relink(const std::vector<std::uint32_t>& polygons, std::optional<std::uint32_t> light,
+                                  std::optional<Clock::time_point> deadline, const Around* around);
     // Clears the direct light of a polygon's quadtree and adds every light's
     // links to it; whether anything changed is for the caller to know.
     // Returns how much it moves the polygon's radiosity once pushed: the sum
@@ -138,6 +156,7 @@ private:
     const Scene& scene_;
     Hierarchy& h_;
     const RayCaster& rays_;
+    std::size_t keptLast_ = 0;
     double threshold_ = 0.0;
     // Per light, the links of each polygon it reaches (sparse: a lamp in one
     // room of a building reaches a few of its polygons).

@@ -5,12 +5,17 @@
 // rho I Omega / L^2, Omega the solid angle of the floor seen from the light.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "geometry/RayCaster.h"
+#include "hierarchy/Hierarchy.h"
+#include "lights/LightLinks.h"
 #include "radiosity/Engine.h"
 #include "radiosity/Gltf.h"
 #include "support/GltfBuilder.h"
@@ -317,6 +322,58 @@ TEST(PunctualLight, AMovingBlockerShadowsThroughTheUpdate) {
     EXPECT_NEAR(floorRadiosity(engine), open, 0.01 * open);
     engine.moveObjects({{"blocker", glm::dmat4(1.0)}});
     EXPECT_NEAR(floorRadiosity(engine), shadowed, 0.001 * shadowed);
+}
+
+// After an object moves, the polygons it shades or shaded are linked to
+// the lights again only below elements whose shaft toward a light meets its
+// old or new box; the others keep their links (relinkAround). The direct
+// light is the same, to the bit, as linking every such polygon again whole:
+// bench/untuned/random_room.py's seed 1, its table moved under three spots.
+TEST(PunctualLight, LinkedAgainAroundAMoveAsIfWhole) {
+    Scene scene = loadGltf(RADIOSITY_SOURCE_DIR "/tests/data/random-room-1.gltf");
+    const std::uint32_t table = *scene.findObject("table");
+    std::vector<std::uint32_t> moved, others;
+    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
+        const Object& o = scene.objects[table];
+        (p >= o.firstPolygon && p < o.firstPolygon + o.polygonCount ? moved : others).push_back(p);
+    }
+    double power = 0.0;
+    for (const PunctualLight& l : scene.lights) power += l.power();
+    struct Lit {
+        Hierarchy h;
+        RayCaster rays;
+        LightLinks links;
+        Lit(const Scene& s, double threshold, const std::vector<std::uint32_t>& fixed,
+            const std::vector<std::uint32_t>& dynamic)
+            : h(s, 1e-4), links(s, h, rays) {
+            rays.setLayer(Layer::Static, s, fixed);
+            rays.setLayer(Layer::Dynamic, s, dynamic);
+            links.setThreshold(threshold);
+            links.linkAll();
+        }
+    };
+    const double threshold = EngineSettings{}.epsilon * power;
+    Lit around(scene, threshold, others, moved), whole(scene, threshold, others, moved);
+    const Aabb before = scene.objectBounds(table);
+    for (std::uint32_t p : moved)
+        for (glm::dvec3& v : scene.polygons[p].vertices) v += glm::dvec3(0.4, 0.0, 0.3);
+    const std::vector<Aabb> boxes{before, scene.objectBounds(table)};
+    for (Lit* lit : {&around, &whole}) {
+        lit->rays.setLayer(Layer::Dynamic, scene, moved);
+        lit->h.updateGeometry(lit->h.objectCluster(table));
+        lit->h.refreshAncestors(lit->h.objectCluster(table));
+    }
+    const std::vector<ElementId> changed = around.links.relinkAround(moved, boxes);
+    std::vector<std::uint32_t> shaded = moved;
+    for (std::uint32_t p : whole.links.shadedBy(boxes)) shaded.push_back(p);
+    std::sort(shaded.begin(), shaded.end());
+    shaded.erase(std::unique(shaded.begin(), shaded.end()), shaded.end());
+    EXPECT_EQ(changed, whole.links.relink(shaded));
+    EXPECT_FALSE(changed.empty());
+    EXPECT_GT(around.links.keptLastRelink(), 0u) << "every shaded element linked again";
+    ASSERT_EQ(around.h.size(), whole.h.size());
+    EXPECT_EQ(around.links.linkCount(), whole.links.linkCount());
+    for (ElementId e = 0; e < around.h.size(); ++e) EXPECT_EQ(around.h.direct(e), whole.h.direct(e)) << "element " << e;
 }
 
 // A lamp: a node marked as one object, its shade and its bulb's light
