@@ -161,13 +161,16 @@ void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>
     for (std::uint32_t p : polygons) {
         bool mayKeep = around && !around->whole[p] && !pending_[lightIndex].contains(p);
         if (mayKeep) {
-            std::vector<LightLink>& was = old[p];
+            std::vector<LightLink> was;
             if (const auto it = links_[lightIndex].find(p); it != links_[lightIndex].end()) was = it->second;
-            for (const LightLink& l : was) mayKeep = mayKeep && h_.isLive(l.receiver);
-            if (!mayKeep) old.erase(p);
-            for (const LightLink& l : was)
-                for (ElementId a = l.receiver; mayKeep && a != kNone && reached.insert(a).second; a = h_[a].parent)
-                    if (a == h_.polygonElement(p)) break;
+            mayKeep = std::all_of(was.begin(), was.end(), [&](const LightLink& l) { return h_.isLive(l.receiver); });
+            if (mayKeep) {
+                // Each receiver and its ancestors in the polygon, each once.
+                for (const LightLink& l : was)
+                    for (ElementId a = l.receiver; reached.insert(a).second && a != h_.polygonElement(p);)
+                        a = h_[a].parent;
+                old.emplace(p, std::move(was));
+            }
         }
         links_[lightIndex].erase(p);
         pending_[lightIndex].erase(p);
@@ -300,16 +303,19 @@ std::vector<ElementId> LightLinks::relink(const std::vector<std::uint32_t>& poly
         for (std::uint32_t p : polygons) before[l].push_back(linksOf(l, p));
     for (std::uint32_t l = 0; l < scene_.lights.size(); ++l)
         if (!light || *light == l) link(l, polygons, deadline, around);
-    // As sets: links kept below an element come after those made anew (a
-    // receiver has one link per light, so its direct light is the same sum).
+    // Around a move, as sets: links kept below an element come after those
+    // made anew (a receiver has one link per light, so its direct light is
+    // the same sum).
     const auto sorted = [](std::vector<LightLink> v) {
         std::sort(v.begin(), v.end(), [](const LightLink& a, const LightLink& b) { return a.receiver < b.receiver; });
         return v;
     };
+    const auto sameLinks = [&](const std::vector<LightLink>& a, const std::vector<LightLink>& b) {
+        return a == b || (around && a.size() == b.size() && sorted(a) == sorted(b));
+    };
     for (std::size_t i = 0; i < polygons.size(); ++i) {
         bool same = true;
-        for (std::size_t l = 0; l < links_.size(); ++l)
-            same = same && sorted(before[l][i]) == sorted(linksOf(l, polygons[i]));
+        for (std::size_t l = 0; l < links_.size(); ++l) same = same && sameLinks(before[l][i], linksOf(l, polygons[i]));
         if (same) continue;
         changes_.emplace_back(h_.polygonElement(polygons[i]), sumDirect(polygons[i]));
         changed.push_back(h_.polygonElement(polygons[i]));

@@ -413,11 +413,12 @@ void copyTexturing(const MeshSnapshot& part, MeshSnapshot& mesh, std::size_t off
 // held into a new allocation the next time it grows (on the building floor,
 // a new layout then took 67 and 128 ms where one within its capacity took
 // 10).
+std::size_t withRoom(std::size_t n) { return n + n / 8; }
 template <class T>
 void resizeWithRoom(std::vector<T>& v, std::size_t n) {
     if (n > v.capacity()) {
         v.clear();
-        v.reserve(n + n / 8);
+        v.reserve(withRoom(n));
     }
     v.resize(n);
 }
@@ -429,7 +430,7 @@ void resizeWithRoom(std::vector<T>& v, std::size_t n) {
 template <class T>
 void keepRoomWritten(std::vector<T>& v) {
     const std::size_t n = v.size();
-    if (v.capacity() < n + n / 8) v.reserve(n + n / 8);
+    v.reserve(withRoom(n));
     v.resize(v.capacity());
     v.resize(n);
 }
