@@ -443,7 +443,6 @@ private:
     // Per link slot, set if the link became a candidate in this frame
     // (cleared by nextFrame; set by concurrent visits of the traversal).
     LinkBits stamps_;
-    bool stampedThisFrame(LinkId id) const { return stamps_.test(id); }
     void stamp(LinkId id);
     void nextFrame();  // ++frame_, and no link stamped
     std::vector<LinkId> candidates_;
