@@ -26,8 +26,7 @@ void anchorOracles(Hierarchy& h) {
     }
 }
 
-std::vector<ElementId> stepOracles(Hierarchy& h, std::span<const ElementId> elements,
-                                   double floor, double scale) {
+SteppedOracles stepOracles(Hierarchy& h, std::span<const ElementId> elements, double floor, double scale) {
     const double logStep = std::log(OracleSteps::kStep);
     // Each element steps alone: on all cores when they are many (an edit of
     // a light touches every element), the moved ones returned in the given
@@ -40,20 +39,23 @@ std::vector<ElementId> stepOracles(Hierarchy& h, std::span<const ElementId> elem
         const double steps =
             std::log((std::max(b, 0.0) + floor) / (el.anchorLight + floor)) / logStep;
         if (std::abs(steps - el.level) <= OracleSteps::kHysteresis) return;
+        const std::int8_t was = el.level;
         el.level = static_cast<std::int8_t>(std::clamp(std::lround(steps), -127L, 127L));
         el.oracle = el.level == 0
                         ? el.anchor
                         : (el.anchor + floor) * std::pow(OracleSteps::kStep, el.level) - floor;
-        stepped[i] = 1;
+        stepped[i] = el.level > was ? 2 : 1;
     };
     if (elements.size() >= kParallelElements)
         tbb::parallel_for(std::size_t(0), elements.size(), step);
     else
         for (std::size_t i = 0; i < elements.size(); ++i) step(i);
-    std::vector<ElementId> moved;
-    for (std::size_t i = 0; i < elements.size(); ++i)
-        if (stepped[i]) moved.push_back(elements[i]);
-    return moved;
+    SteppedOracles out;
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+        if (stepped[i]) out.moved.push_back(elements[i]);
+        if (stepped[i] == 2) out.rose.push_back(elements[i]);
+    }
+    return out;
 }
 
 }  // namespace rad

@@ -47,8 +47,14 @@ void anchorOracles(Hierarchy& hierarchy);
 // edit of a light changes it), so that the level follows an element's share
 // of the light: dimming every light alike changes no level, as it changes no
 // refinement of a solve. Returns the elements whose oracle moved, in the
-// given order. Each element at most once: they step on all cores.
-std::vector<ElementId> stepOracles(Hierarchy& hierarchy, std::span<const ElementId> elements,
-                                   double floor, double scale);
+// given order, and among them those whose oracle rose: a link is refined
+// for its source's oracle, and one that fell asks for no refinement its
+// links did not ask for before (only, later, for coarsening). Each element
+// at most once: they step on all cores.
+struct SteppedOracles {
+    std::vector<ElementId> moved;
+    std::vector<ElementId> rose;
+};
+SteppedOracles stepOracles(Hierarchy& hierarchy, std::span<const ElementId> elements, double floor, double scale);
 
 }  // namespace rad
