@@ -9,11 +9,14 @@
 #include <limits>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
 namespace rad {
-namespace {
+// Meshing's working types, named (not in an anonymous namespace): the cache
+// keeps a Scratch per thread (SnapshotCache::Scratches).
+namespace meshing {
 
 // A point of the dyadic lattice of one input polygon's quadtree.
 struct LatticePoint {
@@ -40,7 +43,16 @@ struct Scratch {
     // T-vertices between them (indices into `vertices`), from ringAt[l].
     std::vector<std::uint32_t> ring, ringAt;
     std::vector<std::uint32_t> cut;  // the outline triangulateOutline cuts down
+    std::vector<glm::dvec3> values;  // a part's leaf values, coloured again
 };
+
+}  // namespace meshing
+
+namespace {
+
+using meshing::LatticePoint;
+using meshing::Scratch;
+using meshing::Vertex;
 
 // Triangles over a leaf's outline (convex, counter-clockwise, with
 // T-vertices on its edges), every outline vertex used and none degenerate:
@@ -732,6 +744,14 @@ bool patch(MeshSnapshot& mesh, SnapshotCache& cache, const std::vector<std::uint
 
 }  // namespace
 
+struct SnapshotCache::Scratches {
+    tbb::enumerable_thread_specific<meshing::Scratch> perThread;
+};
+SnapshotCache::ScratchesHolder::ScratchesHolder() : held(std::make_unique<Scratches>()) {}
+SnapshotCache::ScratchesHolder::ScratchesHolder(const ScratchesHolder&) : ScratchesHolder() {}
+SnapshotCache::ScratchesHolder& SnapshotCache::ScratchesHolder::operator=(const ScratchesHolder&) { return *this; }
+SnapshotCache::ScratchesHolder::~ScratchesHolder() = default;
+
 glm::dvec3 displayOrigin(const Scene& scene) {
     const Aabb bounds = scene.bounds(), detail = scene.detailBounds();
     const bool holdsOrigin = glm::all(glm::lessThanEqual(bounds.lo, glm::dvec3(0.0))) &&
@@ -819,8 +839,8 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
                stopAt;
     };
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polygons, 16), [&](const tbb::blocked_range<std::size_t>& r) {
-        Scratch scratch;
-        std::vector<glm::dvec3> values;
+        Scratch& scratch = cache.scratches.held->perThread.local();
+        std::vector<glm::dvec3>& values = scratch.values;
         for (std::size_t p = r.begin(); p < r.end(); ++p) {
             SnapshotCache::Part& part = cache.parts[p];
             if (touched && part.valid && !(*touched)[p]) continue;

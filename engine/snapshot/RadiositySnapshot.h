@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <memory>
 #include <optional>
 
 #include "hierarchy/Hierarchy.h"
@@ -118,6 +119,20 @@ struct SnapshotCache {
     // The keys' grid follows the scene's box: taken from the objects'
     // boxes, measured again only for the objects that moved.
     ObjectBoxes objectBoxes;
+    // Meshing's working arrays, one set per thread, kept from build to
+    // build: made afresh, a random room's floor of 2,200 leaves grew a
+    // megabyte of corners into fresh memory each time it was meshed, at a
+    // page fault per 4 KiB: 9 to 12 ms of a 16.7 ms frame, against 3.2 to
+    // 3.6 ms with the memory kept. A copied cache gets arrays of its own.
+    struct Scratches;
+    struct ScratchesHolder {
+        std::unique_ptr<Scratches> held;
+        ScratchesHolder();
+        ScratchesHolder(const ScratchesHolder&);
+        ScratchesHolder& operator=(const ScratchesHolder&);
+        ~ScratchesHolder();
+    };
+    ScratchesHolder scratches;
 };
 
 // The same into `mesh`, reusing its memory and the parts in `cache`. With

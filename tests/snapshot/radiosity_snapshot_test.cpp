@@ -155,6 +155,14 @@ TEST(RadiositySnapshot, CachedPartsGiveTheMeshMadeFromScratch) {
     h.updateGeometry(h.polygonElement(moved));
     expectSame("a polygon moved");
     expectSame("nothing changed");
+    // A copied cache meshes with working arrays of its own (SnapshotCache::
+    // scratches), to the same mesh as the one it was copied from.
+    SnapshotCache copy = cache;
+    MeshSnapshot fromCopy = cached;
+    light(h.polygonElement(1));
+    makeRadiositySnapshot(s, h, fromCopy, copy);
+    expectSame("new light, after the cache was copied");
+    test::expectSameMesh(fromCopy, compactMesh(cached), "the copied cache's build");
 }
 
 // A wall of 10 x 10 unit tiles meeting edge to edge (their seams smoothed),
