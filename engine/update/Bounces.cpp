@@ -454,6 +454,26 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     // freed since (its id given to another): judged as it is now.
     std::sort(coarser.begin(), coarser.end());
     coarser.erase(std::unique(coarser.begin(), coarser.end()), coarser.end());
+    if (judged >= kPushSample)
+        judgeSecondsPerLink_ = std::max(secondsSince(judging) / double(judged), 0.75 * judgeSecondsPerLink_);
+    // On a deadline, coarsening waits for idle time when it is not expected
+    // to fit (at what it last took per p-link looked at; before any, at
+    // kCoarsenGuess): an object moving back over where it stood at the
+    // solve returns elements to the solve's level by the hundred, and
+    // reinstating the p-links of one frame's took 11 ms past a random
+    // room's deadline at 60 fps.
+    std::size_t plinks = 0;
+    for (ElementId s : coarser)
+        if (h_.isLive(s)) plinks += h_[s].outPlinks.size();
+    const double perPlink = coarsenSecondsPerPlink_ > 0.0 ? coarsenSecondsPerPlink_ : kCoarsenGuess;
+    if (deadline_ && !idle_ && shareThatFits(stats.changedLeaves, perPlink * double(plinks)) < 1.0) {
+        if (coarsenQueued_.size() < h_.size()) coarsenQueued_.resize(h_.size(), 0);
+        for (ElementId s : coarser)
+            if (h_.isLive(s) && !std::exchange(coarsenQueued_[s], 1)) coarsenLater_.push_back(s);
+        coarser.clear();
+        plinks = 0;
+    }
+    const auto coarsening = std::chrono::steady_clock::now();
     for (ElementId s : coarser) {
         if (!h_.isLive(s)) continue;
         for (LinkId id : std::vector<LinkId>(h_[s].outPlinks)) {
@@ -465,8 +485,8 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
             }
         }
     }
-    if (judged >= kPushSample)
-        judgeSecondsPerLink_ = std::max(secondsSince(judging) / double(judged), 0.75 * judgeSecondsPerLink_);
+    if (plinks >= kPushSample)
+        coarsenSecondsPerPlink_ = std::max(secondsSince(coarsening) / double(plinks), 0.75 * coarsenSecondsPerPlink_);
     const std::size_t used = stats.spent - spentBefore;
     refineFromHeap(heap, stats, budget == kUnlimited ? kUnlimited : (budget > used ? budget - used : 0));
     // The light that the new links carry, once around.

@@ -307,6 +307,10 @@ private:
     // link (links and p-links leaving what stepped).
     std::vector<ElementId> judgeLater_;
     double judgeSecondsPerLink_ = 0.0;
+    // What coarsening took per p-link it looked at (followTheLight), and a
+    // guess until it is measured.
+    double coarsenSecondsPerPlink_ = 0.0;
+    static constexpr double kCoarsenGuess = 1e-6;
     // The oracles' floor, as a fraction of the scene's mean emitted radiosity.
     static constexpr double kOracleFloor = 1e-3;
     // The partial push-pull of what is marked dirty (Fig. 7); counts the

@@ -159,6 +159,35 @@ TEST(MaterialEdit, ADimmedLightIsCoarsenedInIdleTime) {
     EXPECT_LT(e.rms, 0.005) << "max " << e.max << ", worst object " << e.worstObjectRms;
 }
 
+// A lamp brightened refines around it; taken back, its elements return to
+// the solve's level and their refinement goes at once, or, on a deadline
+// that the coarsening is not expected to fit, waits for idle time
+// (LineSpaceUpdate::followTheLight). Which of the two a 2 ms deadline
+// gives depends on the frame's own timing, so this asserts only that
+// neither loses anything: after idle time the hierarchy is the solve's
+// again, link for link, and so is the light.
+TEST(MaterialEdit, ALampTakenBackOnADeadlineReturnsTheSolvesHierarchyAfterIdleTime) {
+    const EngineSettings settings;
+    Engine engine(twoLamps(), settings);
+    ASSERT_TRUE(engine.solve().converged);
+    const std::size_t solved = engine.linkCount();
+    const RadiositySamples before = engine.samples();
+    const FrameStats up = engine.editMaterial("lamp-2", V(24.0, 20.0, 16.0), std::nullopt);
+    EXPECT_GT(up.refined, 0u);
+    UpdateSettings quick;
+    quick.deadlineSeconds = 0.002;
+    const FrameStats back = engine.editMaterial("lamp-2", V(6.0, 5.0, 4.0), std::nullopt, quick);
+    // Coarsened now, or waiting (counted as finer than the light asks), or
+    // not yet stepped (the stepping itself did not fit).
+    EXPECT_GT(back.reinstated + back.finer + back.pending + back.unsent, 0u);
+    for (int frame = 0; frame < 50; ++frame) {
+        const FrameStats idle = engine.refinePending();
+        if (idle.pending + idle.unsent + idle.finer == 0) break;
+    }
+    EXPECT_EQ(engine.linkCount(), solved);
+    EXPECT_LT(compareSamples(engine.samples(), before).rms, 0.001);
+}
+
 // An edit with no time left (its deadline already past) leaves what it
 // would do to later frames: its bounces wait unsent, and the stepping of the
 // oracles and the judging of the links of what stepped wait with the
