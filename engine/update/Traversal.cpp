@@ -142,7 +142,7 @@ bool LineSpaceUpdate::traverse(std::optional<std::chrono::steady_clock::time_poi
 }
 
 std::size_t LineSpaceUpdate::addVisit(ElementId he, const IndexRange& ind) {
-    if (visitCount_ == visits_.size()) visits_.emplace_back();
+    if (visitCount_ == visits_.size()) visits_.push_back(Visit{});
     Visit& v = visits_[visitCount_];
     v.he = he;
     v.ind = ind;
