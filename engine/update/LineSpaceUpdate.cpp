@@ -507,13 +507,16 @@ void LineSpaceUpdate::prepare() {
     powerScratch_.resize(h_.size(), 0.0);
     sending_.resize(h_.size(), 0);
     unsent_.cover(h_.size());
+    transferBlock_ = std::clamp<std::size_t>(links_.liveCount() / 32, 1024, 16384);
+    transfers_.assign(transferBlock_, Transfer{});  // its pages written now
+    transfers_.clear();
     refiner_.recordSendersChanged();  // for the sum of what the unsent have to send
 }
 
 std::size_t LineSpaceUpdate::memoryBytes() const {
     return waitingChange_.memoryBytes() + isTouched_.memoryBytes() + powerScratch_.memoryBytes() +
            sending_.memoryBytes() + unsent_.memoryBytes() + polygonStamp_.capacity() * sizeof(std::uint32_t) +
-           stamps_.memoryBytes() + staleMarks_.memoryBytes();
+           stamps_.memoryBytes() + staleMarks_.memoryBytes() + transfers_.capacity() * sizeof(Transfer);
 }
 
 void LineSpaceUpdate::clustersMoved(ElementId objectCluster) {

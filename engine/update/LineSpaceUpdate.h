@@ -382,12 +382,26 @@ private:
         double send, hold;  // changes of radiosity
         double share;       // of the radiosity sent: a change above it is sent down to `hold`
     };
-    bool collectTransfers(const std::vector<ElementId>& visited, Thresholds threshold,
-                          std::vector<Transfer>& transfers, BounceSeries* series, std::vector<ElementId>& held);
+    // Then sends them: finds the transfers (collectTransfers) and adds them
+    // to their receivers (applyTransfers), a block of senders at a time;
+    // their count is added to `sentCount`.
+    bool sendTransfers(const std::vector<ElementId>& visited, Thresholds threshold, BounceSeries* series,
+                       std::vector<ElementId>& held, std::size_t& sentCount);
+    // The transfers of the given senders (their first transfer's place in
+    // the bounce in `first`) into transfers_, and the senders marked
+    // gathered; those in `sendsAhead` send `ahead` times their change.
+    void collectTransfers(std::span<const ElementId> sources, std::span<const std::size_t> first,
+                          std::span<const char> sendsAhead, const glm::dvec3& ahead);
     // Adds the transfers to their receivers, in order, and marks dirty each
     // whose radiosity may have moved by more than `threshold` since its last
     // push (the others wait, in waiting_).
     void applyTransfers(const std::vector<Transfer>& transfers, double threshold);
+    // The buffer transfers are found in, made with the update's marks
+    // (prepare) and kept: a block of transferBlock_ transfers, unless one
+    // sender alone has more links. A thirty-second of the links, from 1,024
+    // to 16,384 transfers (512 KiB): at most a byte a link.
+    std::vector<Transfer> transfers_;
+    std::size_t transferBlock_ = 1024;
 
     // The last emission edit's light (propagate), while nothing but
     // emission changes: a move or a change of reflectance drops it.
