@@ -372,19 +372,18 @@ private:
     // guess. Above the largest, 1 / (1 - r) magnifies the ratio's error.
     static constexpr double kSteadyBounceRatio = 0.1;
     static constexpr double kSmallestBounceRatio = 0.3, kLargestBounceRatio = 0.95;
-    // The transfers of the visited elements whose radiosity moved by more
-    // than the threshold since they were last gathered, in the order of
-    // `visited` and of their links; marks them gathered. With a series (all
-    // of the bounce's senders send), the change is sent ahead once it falls
-    // steadily. False if none moved.
-    // Those that moved by more than `hold` only are appended to `held`.
     struct Thresholds {
         double send, hold;  // changes of radiosity
         double share;       // of the radiosity sent: a change above it is sent down to `hold`
     };
-    // Then sends them: finds the transfers (collectTransfers) and adds them
-    // to their receivers (applyTransfers), a block of senders at a time;
-    // their count is added to `sentCount`.
+    // Sends the change of the visited elements whose radiosity moved by
+    // more than the threshold since they were last gathered, in the order
+    // of `visited` and of their links, and marks them gathered: finds the
+    // transfers (collectTransfers) and adds them to their receivers
+    // (applyTransfers), a block of senders at a time; their count is added
+    // to `sentCount`. With a series (all of the bounce's senders send), the
+    // change is sent ahead once it falls steadily. False if none moved.
+    // Those that moved by more than `hold` only are appended to `held`.
     bool sendTransfers(const std::vector<ElementId>& visited, Thresholds threshold, BounceSeries* series,
                        std::vector<ElementId>& held, std::size_t& sentCount);
     // The transfers of the given senders (their first transfer's place in
