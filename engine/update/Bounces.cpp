@@ -437,7 +437,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     // every element, and judging all of `office`'s links took 72 ms of a
     // 17 ms frame.
     std::size_t judged = 0;
-    for (ElementId s : rose) judged += h_[s].outLinks.size() + h_[s].outPlinks.size();
+    for (ElementId s : rose) judged += h_[s].outLinks.size();
     if (deadline_ && !idle_ && shareThatFits(stats.changedLeaves, judgeSecondsPerLink_ * double(judged)) < 1.0) {
         judgeLater_ = std::move(moved);
         return;
@@ -450,6 +450,10 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
         for (ElementId e : coarser) coarsenQueued_[e] = 0;
     }
     if (moved.empty() && coarser.empty()) return;
+    const auto coarsenInIdleTime = [&](ElementId e) {
+        if (coarsenQueued_.size() < h_.size()) coarsenQueued_.resize(h_.size(), 0);
+        if (!std::exchange(coarsenQueued_[e], 1)) coarsenLater_.push_back(e);
+    };
     const std::size_t spentBefore = stats.spent;
     RefineHeap heap;
     for (ElementId s : rose) {
@@ -467,8 +471,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
         if (coarsen || h_[s].level == 0) {
             coarser.push_back(s);
         } else if (!h_[s].outPlinks.empty()) {
-            if (coarsenQueued_.size() < h_.size()) coarsenQueued_.resize(h_.size(), 0);
-            if (!std::exchange(coarsenQueued_[s], 1)) coarsenLater_.push_back(s);
+            coarsenInIdleTime(s);
         }
     }
     // Refinement the new oracle no longer asks for goes (its line-space
@@ -489,9 +492,8 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
         if (h_.isLive(s)) plinks += h_[s].outPlinks.size();
     const double perPlink = coarsenSecondsPerPlink_ > 0.0 ? coarsenSecondsPerPlink_ : kCoarsenGuess;
     if (deadline_ && !idle_ && shareThatFits(stats.changedLeaves, perPlink * double(plinks)) < 1.0) {
-        if (coarsenQueued_.size() < h_.size()) coarsenQueued_.resize(h_.size(), 0);
         for (ElementId s : coarser)
-            if (h_.isLive(s) && !std::exchange(coarsenQueued_[s], 1)) coarsenLater_.push_back(s);
+            if (h_.isLive(s)) coarsenInIdleTime(s);
         coarser.clear();
         plinks = 0;
     }

@@ -305,7 +305,7 @@ private:
     std::vector<char> coarsenQueued_;  // per element: in coarsenLater_
     // Elements whose oracle stepped and whose links a deadline left to be
     // judged at a later frame or in idle time, and what judging took per
-    // link (links and p-links leaving what stepped).
+    // link (the links leaving what rose).
     std::vector<ElementId> judgeLater_;
     double judgeSecondsPerLink_ = 0.0;
     // What coarsening took per p-link it looked at (followTheLight), and a
