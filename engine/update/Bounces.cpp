@@ -251,6 +251,9 @@ void LineSpaceUpdate::applyTransfers(const std::vector<Transfer>& transfers, dou
             __builtin_prefetch(&ahead.dirty);
         }
         const Transfer& t = transfers[k];
+        // Nothing arrives (a cluster source none of whose facets face the
+        // receiver): the receiver neither changes nor waits to be pushed.
+        if (t.irradiance == glm::dvec3(0.0)) continue;
         HElement& r = h_[t.receiver];
         if (r.isSurface()) {
             r.irradiance += t.irradiance;
