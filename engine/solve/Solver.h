@@ -184,7 +184,8 @@ class Solver {
         const glm::dvec3 irradiance = d.totalIrradiance();
         const double formFactorSum = d.totalSum();
         if (guard_ && formFactorSum > 1.0) {
-            // The clusters' estimate gives way to the surfaces' links.
+            // The surfaces' links alone over one: all divided; else the
+            // excess divides as the two sums' variances.
             if (d.formFactorSum >= 1.0 || !(d.clusterSum > 0.0)) return irradiance / formFactorSum;
             const double excess = formFactorSum - 1.0;
             const double clusters = kClusterUncertainty * kClusterUncertainty * d.clusterSum * d.clusterSum;
