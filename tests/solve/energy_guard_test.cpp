@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "hierarchy/Hierarchy.h"
-#include "radiosity/Engine.h"
 #include "links/Link.h"
+#include "radiosity/Engine.h"
 #include "solve/Solver.h"
 #include "support/TestScenes.h"
 
@@ -71,7 +71,7 @@ TEST(EnergyGuard, ALampOnASmallClusterLinkKeepsItsLight) {
     EXPECT_NEAR(got.x, expected(0.998, 0.006).x, 1e-12);
     const double lamp = got.x - 2.0 * 0.998 * (1.0 - 0.004);  // at most all the excess from the surfaces
     EXPECT_GT(lamp, 5.0 * 0.006 * 0.99);
-    // Still no more than the view: the sum that arrives is one.
+    // And never more than the links bring without the guard.
     EXPECT_LE(got.x, 2.0 * 0.998 + 5.0 * 0.006);
 }
 
