@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <map>
@@ -24,6 +25,7 @@
 #include "scene/ClosedBackFaces.h"
 #include "scene/Contacts.h"
 #include "scene/Covered.h"
+#include "scene/Placement.h"
 #include "scene/Rectangles.h"
 
 namespace rad {
@@ -1198,13 +1200,35 @@ class Importer {
         return total;
     }
 
+    // Nothing may lie so far from the scene's detail that the rays and the
+    // plane tests lose it (scene/Placement.h).
+    void failOutOfReach(const Placement& placement) const {
+        const auto check = [&](const glm::dvec3& p, const std::string& item) {
+            if (placement.reaches(p)) return;
+            std::ostringstream out;
+            out << std::setprecision(3) << "lies " << glm::length(p - placement.centre)
+                << " m from the rest of the scene, over " << kMaxReach << " times the size of its detail ("
+                << placement.size << " m): is the node misplaced, or in other units?";
+            fail(item, out.str());
+        };
+        for (const PendingObject& o : pending_)
+            for (const WorldTriangle& t : o.triangles)
+                for (const glm::dvec3& v : t.v) check(v, o.item);
+        for (const PunctualLight& l : lights_) check(l.position, "light '" + l.name + "'");
+    }
+
     // Drops degenerate triangles, merges quads, drops duplicate polygons and
     // lays the polygons out object by object.
     Scene finish() {
         Aabb box;
+        std::vector<glm::dvec3> points;
         for (const PendingObject& o : pending_)
             for (const WorldTriangle& t : o.triangles)
-                for (const glm::dvec3& v : t.v) box.extend(v);
+                for (const glm::dvec3& v : t.v) {
+                    box.extend(v);
+                    points.push_back(v);
+                }
+        failOutOfReach(placementOf(points));
         const double diagonal2 = box.empty() ? 0.0 : glm::dot(box.extent(), box.extent());
 
         // Each pending object's polygons; Polygon::object is the pending

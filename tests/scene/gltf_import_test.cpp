@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 
 #include "radiosity/Engine.h"
 #include "radiosity/Gltf.h"
+#include "scene/Placement.h"
 #include "support/Cli.h"
 #include "support/GltfBuilder.h"
 #include "support/Motion.h"
@@ -1310,6 +1312,43 @@ TEST(GltfImportErrors, EmptyScene) {
     expectOneLineError(importError(flat), flat, "contains no polygons");
     EXPECT_NE(importError(flat).find("degenerate"), std::string::npos) << importError(flat);
 
+}
+
+// A node or a light misplaced far out (a translation of 1e30 typed for 1.0):
+// beyond kMaxReach times the size of the scene's detail the rays and the
+// plane tests lose the scene (a floor 1e10 m out made every polygon of
+// `lamp-room` "repeat" the ceiling, a light 1e20 m out crashed Embree), so
+// the import names it. One cube of five, or a light, 10 km out is kept.
+TEST(GltfImport, ANodeOrLightFarOutOfTheSceneIsNamed) {
+    TempDir dir;
+    const auto scene = [&](double cubeX, double lightX, const std::string& name) {
+        GltfBuilder g;
+        const int cube = addCubeMesh(g, g.addGrey("Grey"));
+        for (int i = 0; i < 4; ++i)
+            g.addNode("\"name\":\"near-" + std::to_string(i) + "\",\"mesh\":" + std::to_string(cube) +
+                      ",\"translation\":[" + std::to_string(2 * i) + ",0,0]");
+        std::ostringstream far, light;
+        far << "\"name\":\"far\",\"mesh\":" << cube << ",\"translation\":[" << cubeX << ",0,0]";
+        g.addNode(far.str());
+        light << R"("name":"bulb","translation":[)" << lightX << R"(,2,0],"extensions":{"KHR_lights_punctual":{"light":0}})";
+        g.addNode(light.str());
+        g.extraTopLevel = R"("extensionsUsed":["KHR_lights_punctual"],)"
+                          R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":5}]}},)";
+        return g.writeEmbedded(dir, name);
+    };
+    // The detail, the middle half of the vertices, is 5 m across at most
+    // here (the near cubes span 7 m): its reach is at most 5e5 m, at least 1e5.
+    ASSERT_EQ(kMaxReach, 1e5);
+    EXPECT_EQ(loadGltf(path(scene(1e4, 1.0, "kept.gltf"))).objects.size(), 5u);
+    EXPECT_EQ(loadGltf(path(scene(1.0, 1e4, "light-kept.gltf"))).lights.size(), 1u);
+    for (double x : {1e7, 1e10, 1e30}) {
+        const fs::path cube = scene(x, 1.0, "far-cube.gltf");
+        const std::string message = importError(cube);
+        expectOneLineError(message, cube, "node 'far'");
+        EXPECT_NE(message.find("misplaced"), std::string::npos) << message;
+        const fs::path bulb = scene(1.0, x, "far-light.gltf");
+        expectOneLineError(importError(bulb), bulb, "light 'bulb'");
+    }
 }
 
 // Whether a triangle is degenerate is judged by its own size: an object 1e7 m
