@@ -122,9 +122,11 @@ tinygltf::Model buildModel(const MeshSnapshot& mesh) {
     tinygltf::Node node;
     node.name = "radiosity";
     node.mesh = 0;
-    // The positions are relative to the snapshot's origin; glTF's node
-    // translation is a double in the JSON, so nothing is lost far out.
-    if (mesh.origin != glm::dvec3(0.0)) node.translation = {mesh.origin.x, mesh.origin.y, mesh.origin.z};
+    // The positions are relative to the snapshot's origin, and the scene to
+    // where the file had it; glTF's node translation is a double in the
+    // JSON, so nothing is lost far out.
+    const glm::dvec3 at = mesh.origin + mesh.fileOrigin;
+    if (at != glm::dvec3(0.0)) node.translation = {at.x, at.y, at.z};
     model.nodes.push_back(node);
 
     tinygltf::Scene scene;

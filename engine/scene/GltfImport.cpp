@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iomanip>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <map>
@@ -951,8 +952,11 @@ class Importer {
             fail(item, std::to_string(indices.size()) + " vertices do not make whole triangles");
 
         std::vector<glm::dvec3> worldPos(local.size());
-        for (std::size_t i = 0; i < local.size(); ++i)
+        const glm::dvec3 nodeOrigin(world[3]);
+        for (std::size_t i = 0; i < local.size(); ++i) {
             worldPos[i] = glm::dvec3(world * glm::dvec4(local[i], 1.0));
+            storedReach_ = std::max(storedReach_, glm::length(worldPos[i] - nodeOrigin));
+        }
 
         for (std::size_t t = 0; t < indices.size(); t += 3) {
             WorldTriangle tri;
@@ -1217,18 +1221,48 @@ class Importer {
         for (const PunctualLight& l : lights_) check(l.position, "light '" + l.name + "'");
     }
 
+    // A scene that its nodes' translations place far out, its positions
+    // stored small, is moved near the origin (Scene::fileOrigin): the plane
+    // tests allow for float32 rounding where a polygon lies
+    // (positionTolerance), 10 cm 1000 km out, which cut most of
+    // `lamp-room`'s bookcase as covered when a parent node moved it there.
+    // Positions stored far out keep where they are and their allowance.
+    // Returns the shift, in the file's coordinates: whole metres.
+    glm::dvec3 bringNearOrigin(const Placement& placement) {
+        const double far = glm::length(placement.centre);
+        if (!(far > kFarOut * std::max(placement.size, storedReach_))) return glm::dvec3(0.0);
+        const glm::dvec3 shift = glm::round(placement.centre);
+        const glm::dmat4 back = glm::translate(glm::dmat4(1.0), -shift);
+        for (PendingObject& o : pending_) {
+            o.object.worldFromLocal = back * o.object.worldFromLocal;
+            for (WorldTriangle& t : o.triangles)
+                for (glm::dvec3& v : t.v) v -= shift;
+        }
+        for (PunctualLight& l : lights_) {
+            l.position -= shift;
+            l.worldFromLocal = back * l.worldFromLocal;
+        }
+        if (camera_) camera_->position -= shift;
+        return shift;
+    }
+    // How many times its size (and its stored positions' reach) a scene's
+    // detail must lie from the origin to be moved near it: ordinary scenes,
+    // a few sizes off the origin, are left as they are.
+    static constexpr double kFarOut = 1000.0;
+
     // Drops degenerate triangles, merges quads, drops duplicate polygons and
     // lays the polygons out object by object.
     Scene finish() {
-        Aabb box;
         std::vector<glm::dvec3> points;
         for (const PendingObject& o : pending_)
+            for (const WorldTriangle& t : o.triangles) points.insert(points.end(), t.v.begin(), t.v.end());
+        const Placement placement = placementOf(points);
+        failOutOfReach(placement);
+        const glm::dvec3 fileOrigin = bringNearOrigin(placement);
+        Aabb box;
+        for (const PendingObject& o : pending_)
             for (const WorldTriangle& t : o.triangles)
-                for (const glm::dvec3& v : t.v) {
-                    box.extend(v);
-                    points.push_back(v);
-                }
-        failOutOfReach(placementOf(points));
+                for (const glm::dvec3& v : t.v) box.extend(v);
         const double diagonal2 = box.empty() ? 0.0 : glm::dot(box.extent(), box.extent());
 
         // Each pending object's polygons; Polygon::object is the pending
@@ -1366,6 +1400,7 @@ class Importer {
                  "through them");
 
         Scene scene;
+        scene.fileOrigin = fileOrigin;
         scene.materials = std::move(materials_);
         scene.textures = std::move(textures_);
         scene.camera = camera_;
@@ -1552,6 +1587,9 @@ class Importer {
     std::set<std::uint32_t> doubleSided_;  // scene material indices
     std::map<std::uint32_t, std::string> alphaMode_;  // scene material indices not OPAQUE: their alphaMode
     std::size_t backFaces_ = 0;
+    // How far from their nodes' origins the stored positions lie, in world
+    // units: their float32 rounding is relative to that (bringNearOrigin).
+    double storedReach_ = 0.0;
     std::map<int, std::optional<std::uint32_t>> textureMap_;  // glTF texture -> Scene::textures
     std::vector<std::shared_ptr<const Texture>> textures_;
     std::map<std::uint32_t, std::uint32_t> untextured_;  // material -> its copy without texture

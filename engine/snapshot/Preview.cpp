@@ -6,6 +6,7 @@ namespace rad {
 MeshSnapshot makePreviewSnapshot(const Scene& scene) {
     MeshSnapshot mesh;
     mesh.origin = displayOrigin(scene);
+    mesh.fileOrigin = scene.fileOrigin;
     for (const Polygon& p : scene.polygons) {
         const Material& m = scene.materials[p.material];
         const glm::vec3 color(m.reflectance + m.emission);

@@ -767,6 +767,7 @@ glm::dvec3 displayOrigin(const Scene& scene) {
 MeshSnapshot compactMesh(const MeshSnapshot& mesh) {
     MeshSnapshot out;
     out.origin = mesh.origin;
+    out.fileOrigin = mesh.fileOrigin;
     out.textures = mesh.textures;
     out.linePositions = mesh.linePositions;
     out.lineColors = mesh.lineColors;
@@ -817,6 +818,7 @@ std::size_t makeRadiositySnapshot(const Scene& scene, const Hierarchy& hierarchy
     // (a median over the polygons: not remade every frame).
     if (cache.parts.empty()) cache.origin = displayOrigin(scene);
     mesh.origin = cache.origin;
+    mesh.fileOrigin = scene.fileOrigin;
     cache.parts.resize(polygons);
     std::vector<std::uint8_t> remeshed(polygons, 0);
     std::atomic<std::size_t> meshed{0}, left{0};

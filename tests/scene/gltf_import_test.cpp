@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include "radiosity/Engine.h"
 #include "radiosity/Gltf.h"
@@ -1349,6 +1351,88 @@ TEST(GltfImport, ANodeOrLightFarOutOfTheSceneIsNamed) {
         const fs::path bulb = scene(1.0, x, "far-light.gltf");
         expectOneLineError(importError(bulb), bulb, "light 'bulb'");
     }
+}
+
+// A scene that a parent node's translation places 1000 km out (a
+// georeferenced site), its positions stored small: imported as at the
+// origin, moved there (Scene::fileOrigin), and exported back where the file
+// had it. Before, the plane tests allowed for float32 rounding where the
+// polygons ended up (10 cm there): `lamp-room` so placed lost most of its
+// bookcase, cut away as covered by polygons "in its plane" (129 polygons
+// cut, 8.85 m^2). Positions stored that far out themselves are left where
+// they are, with their rounding allowed for.
+TEST(GltfImport, AScenePlacedFarOutByATranslationImportsAsAtTheOrigin) {
+    TempDir dir;
+    const auto scene = [&](const glm::dvec3& at, const std::string& name) {
+        GltfBuilder g;
+        const int grey = g.addGrey("Grey");
+        const int wall = addRectMesh(g, "Wall", grey);  // 2 x 3 m in z = 0, facing +z
+        const int poster = g.addMesh("Poster",
+                                     g.addPositions({{0.5f, 1, 0.05f}, {1.5f, 1, 0.05f}, {1.5f, 2, 0.05f}, {0.5f, 2, 0.05f}}),
+                                     g.addIndices(kRectIndices), grey);
+        const int w = g.addNode("\"name\":\"wall\",\"mesh\":" + std::to_string(wall), false);
+        const int p = g.addNode("\"name\":\"poster\",\"mesh\":" + std::to_string(poster), false);
+        const int b = g.addNode(R"("name":"bulb","translation":[1,1.5,1],"extensions":{"KHR_lights_punctual":{"light":0}})", false);
+        std::ostringstream site;
+        site << std::setprecision(17) << R"("name":"site","translation":[)" << at.x << "," << at.y << "," << at.z
+             << R"(],"children":[)" << w << "," << p << "," << b << "]";
+        g.addNode(site.str());
+        g.extraTopLevel = R"("extensionsUsed":["KHR_lights_punctual"],)"
+                          R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":5}]}},)";
+        return g.writeEmbedded(dir, name);
+    };
+    const Scene here = loadGltf(path(scene(glm::dvec3(0.0), "here.gltf")));
+    EXPECT_EQ(here.fileOrigin, glm::dvec3(0.0));
+    const glm::dvec3 at(1e6, 20.0, -7e5);
+    const Scene far = loadGltf(path(scene(at, "far.gltf")));
+    ASSERT_EQ(far.polygons.size(), here.polygons.size());
+    EXPECT_EQ(here.polygons.size(), 2u);  // the wall whole, the poster 5 cm in front of it
+    for (std::size_t i = 0; i < here.polygons.size(); ++i)
+        for (int k = 0; k < here.polygons[i].vertexCount; ++k)
+            EXPECT_NEAR(glm::length(far.polygons[i].vertices[k] + far.fileOrigin - at - here.polygons[i].vertices[k]),
+                        0.0, 1e-9);
+    ASSERT_EQ(far.lights.size(), 1u);
+    EXPECT_NEAR(glm::length(far.lights[0].position + far.fileOrigin - at - here.lights[0].position), 0.0, 1e-9);
+    EXPECT_LT(glm::length(far.polygons[0].vertices[0]), 10.0);  // near the origin
+    // Moved back on export.
+    const fs::path lit = dir / "far-lit.gltf";
+    exportGltf(makePreviewSnapshot(far), lit.string());
+    const Scene exported = loadGltf(path(lit));
+    Aabb box;
+    for (const Polygon& q : exported.polygons)
+        for (int k = 0; k < q.vertexCount; ++k) box.extend(q.vertices[k] + exported.fileOrigin);
+    EXPECT_NEAR(box.lo.x, at.x, 1e-6);
+    EXPECT_NEAR(box.lo.z, at.z, 1e-6);
+    EXPECT_NEAR(box.hi.y, at.y + 3.0, 1e-6);
+
+    // lamp-room, every polygon as at the origin.
+    {
+        nlohmann::json file = nlohmann::json::parse(std::ifstream(test::sourcePath("scenes/lamp-room.gltf")));
+        nlohmann::json& roots = file["scenes"][0]["nodes"];
+        file["nodes"].push_back({{"name", "site"}, {"translation", {at.x, at.y, at.z}}, {"children", roots}});
+        roots = nlohmann::json::array({file["nodes"].size() - 1});
+        const fs::path placed = dir / "lamp-room-far.gltf";
+        std::ofstream(placed) << file.dump();
+        const Scene original = loadGltf(test::sourcePath("scenes/lamp-room.gltf"));
+        const Scene moved = loadGltf(path(placed));
+        ASSERT_EQ(moved.polygons.size(), original.polygons.size());
+        for (std::size_t i = 0; i < original.polygons.size(); ++i)
+            for (int k = 0; k < original.polygons[i].vertexCount; ++k)
+                ASSERT_NEAR(glm::length(moved.polygons[i].vertices[k] + moved.fileOrigin - at -
+                                        original.polygons[i].vertices[k]),
+                            0.0, 1e-6)
+                    << i;
+    }
+
+    // A wall stored 1000 km out in the buffer: its floats are rounded to
+    // 6 cm steps there, which the plane tests must keep allowing for: not
+    // moved.
+    GltfBuilder baked;
+    std::vector<glm::vec3> stored;
+    for (const glm::vec3& v : kRect) stored.push_back(v + glm::vec3(1e6f, 0.0f, 0.0f));
+    baked.addMesh("Wall", baked.addPositions(stored), baked.addIndices(kRectIndices), baked.addGrey("Grey"));
+    baked.addNode("\"name\":\"wall\",\"mesh\":0");
+    EXPECT_EQ(loadGltf(path(baked.writeEmbedded(dir, "baked.gltf"))).fileOrigin, glm::dvec3(0.0));
 }
 
 // Whether a triangle is degenerate is judged by its own size: an object 1e7 m

@@ -161,6 +161,13 @@ struct Scene {
     std::vector<Polygon> polygons;
     std::vector<PunctualLight> lights;
     std::optional<Camera> camera;
+    // Where this scene's origin lies in the file's coordinates. The import
+    // brings a scene that its nodes' translations place far out (a
+    // georeferenced site 1000 km from the file's origin) near the origin:
+    // its plane tests allow for float32 rounding where a polygon lies, which
+    // there would be 10 cm though its positions were stored small. The lit
+    // mesh's export puts the scene back where the file had it.
+    glm::dvec3 fileOrigin{0.0};
     // Shared, not copied: a scene is copied per engine and per frame's
     // reference, its images are not.
     std::vector<std::shared_ptr<const Texture>> textures;

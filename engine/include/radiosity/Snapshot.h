@@ -23,6 +23,8 @@ struct MeshSnapshot {
     // Renderers add it back in double (MeshRenderer folds it into the
     // view-projection). 0 for a scene around the origin (displayOrigin).
     glm::dvec3 origin{0.0};
+    // Scene::fileOrigin: exported meshes are moved back by it.
+    glm::dvec3 fileOrigin{0.0};
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec3> colors;  // linear RGB, same units as B
