@@ -716,7 +716,7 @@ const SolveStats& Engine::solve(const Progress& progress) {
         // fixed from then on), and at least one round follows to do it.
         bool rescaled = false;
         if (round == 1 && s.settings.localThresholds) {
-            std::vector<float> scales = receiverLightScales(s.scene, s.hierarchy);
+            std::vector<float> scales = receiverLightScales(s.scene, s.hierarchy, s.scale);
             rescaled = std::any_of(scales.begin(), scales.end(), [](float v) { return v < 1.0f; });
             s.refiner.setReceiverScales(std::move(scales));
         }

@@ -22,7 +22,8 @@ void addEngineOptions(CLI::App& command, EngineSettings& settings) {
         "--whole-scene-thresholds", [&settings](std::int64_t) { settings.localThresholds = false; },
         "epsilon and the default area threshold relative to the whole scene, even where a point sees only a room of "
         "it, and for dimly lit surfaces as for the rest (by default a building's rooms are each refined as alone, "
-        "and a surface under a quarter of the mean light is refined up to four times finer)");
+        "a surface under a quarter of the mean light up to four times finer, and a large one under the mean up to "
+        "sixteen times)");
     command.add_option("--max-iterations", settings.solve.maxIterations,
                        "gather/push-pull sweeps per round before giving up")
         ->type_name("N")
