@@ -44,7 +44,7 @@ const ReferenceCase kBlenderRoomCase{"blender-room", 128, 72, 0.05,
                                      "bench/untuned/blender-room.glb"};
 // Two rooms built of slabs that run through each other, lit through a
 // doorway (bench/untuned/slab_rooms.py --doorway), seen from the dark room.
-// No issue sets its target; it is held to 8% (measured 6.6%; 16.0% before
+// No issue sets its target; it is held to 8% (measured 5.9%; 16.0% before
 // the import cut polygons where they pass into closed solids, when the
 // wall elements straddling the partition shone into the dark room). No light
 // is in its camera's view.
@@ -86,12 +86,12 @@ const ReferenceCase kKitchenCase{"kitchen-room", 128, 96, 0.07, "bench/untuned/k
 // scene file.
 const ReferenceCase kBedroomCase{"bedroom", 128, 96, 0.0, "bench/untuned/bedroom.gltf"};
 // Two storeys joined by a stair through an opening in the slab, seen from the
-// lower one, which the light reaches only through the opening
-// (bench/untuned/stair_hall.py): measured in the README (42.7% at the default
-// settings, 8.1% at a sixteenth of the epsilon), not asserted: refinement
-// judges links against the scene's emitted power, and the lower storey gets a
-// hundredth of the upper one's light (README, "Known limits").
-const ReferenceCase kStairHallCase{"stair-hall", 128, 96, 0.0, "bench/untuned/stair-hall.gltf"};
+// lower one, which the light reaches only through the opening, about a
+// hundredth of the upper one's (bench/untuned/stair_hall.py). No issue sets
+// its target; it is held to 13% (measured 10.4%; 19.4% when dim polygons
+// were refined at most four times finer for their own light, 42.7% before
+// any, 8.1% at a sixteenth of the epsilon: README, "Known limits").
+const ReferenceCase kStairHallCase{"stair-hall", 128, 96, 0.13, "bench/untuned/stair-hall.gltf"};
 // Measured in the README (4.5% at the default settings; 6.6% before the
 // clusters' exposure, 12.2% before the fill), not asserted: no
 // issue sets its target, and its solve under the sanitizers would cost CI
@@ -220,6 +220,7 @@ TEST(CyclesAccuracy, PointAndSpotLightsWithinFivePercent) { expectWithinTarget(k
 TEST(CyclesAccuracy, ARoomTurnedOffTheAxesWithinFivePercent) { expectWithinTarget(kTurnedRoomCase); }
 TEST(CyclesAccuracy, ARoomLitByUplightsWithinFivePercent) { expectWithinTarget(kUplightRoomCase); }
 TEST(CyclesAccuracy, AKitchenLitByStripsUnderItsCupboardsWithinSevenPercent) { expectWithinTarget(kKitchenCase); }
+TEST(CyclesAccuracy, AStoreyLitThroughAStairOpeningWithinThirteenPercent) { expectWithinTarget(kStairHallCase); }
 
 }  // namespace
 }  // namespace rad
