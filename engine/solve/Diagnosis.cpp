@@ -103,9 +103,14 @@ std::string diagnoseFailure(const Scene& scene, const Hierarchy& h, const Solver
               << quoted(names) << " grows without bound";
             break;
         case Status::IterationLimit:
-            m << "did not converge: after " << r.iterations
-              << " sweeps the estimated remaining error is " << r.estimatedError << " (tolerance "
-              << settings.tolerance << ")";
+            // The remaining error is estimated from how fast the change
+            // falls: two sweeps at least.
+            if (r.iterations < 2)
+                m << "did not converge: after " << r.iterations << " sweep the change was " << r.lastChange
+                  << " (tolerance " << settings.tolerance << "), and telling what remains takes two sweeps";
+            else
+                m << "did not converge: after " << r.iterations << " sweeps the estimated remaining error is "
+                  << r.estimatedError << " (tolerance " << settings.tolerance << ")";
             break;
         case Status::Converged:
             return {};

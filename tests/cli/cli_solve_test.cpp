@@ -158,6 +158,18 @@ void expectNoNull(const nlohmann::json& value, const std::string& path = "") {
         for (std::size_t i = 0; i < value.size(); ++i) expectNoNull(value[i], path + "/" + std::to_string(i));
 }
 
+// One sweep cannot tell what remains (the estimate takes two): the message
+// says so, where it read "did not converge: did not converge: after 1 sweeps
+// the estimated remaining error is 0".
+TEST(CliSolve, OneSweepSaysItCannotEstimateWhatRemains) {
+    const auto r = runCli("solve " + shellQuote(kCornell) + " --max-iterations 1");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("after 1 sweep the change was "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("takes two sweeps"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("remaining error is 0 "), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("did not converge: did not converge"), std::string::npos) << r.output;
+}
+
 // Issue 11: a memory limit hit is not a converged solve. A tiny --max-memory
 // stops refinement; the solve says so everywhere and exits 1.
 TEST(CliSolve, ATinyMemoryLimitFailsAndSaysSo) {
