@@ -13,8 +13,8 @@
 // at least kLargeFinestScale.
 // Its light is much of what is seen there; the many small dim polygons
 // under furniture and in shelves are not, and refining them as finely took
-// `office` 26% more links (over the 2 s its solve may take) for 4.3% from
-// Cycles as before. Where the light is sent matters as much (the bright
+// `office` 23% more links (2.9 s, over the 2 s its solve may take) for 4.1%
+// from Cycles against 4.3%. Where the light is sent matters as much (the bright
 // storey's links into the dark one), and those links have dark receivers
 // too; refining dark sources among themselves helped little (measured in
 // the README).
