@@ -10,6 +10,7 @@
 
 #include "cli/Args.h"
 #include "cli/ProgressLines.h"
+#include "cli/Warnings.h"
 
 namespace rad::cli {
 namespace {
@@ -113,7 +114,7 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
     engine.solve(progressOnStderr("solve"));
     run.solveSeconds = secondsSince(start);
     run.initial = engine.stats();
-    if (!run.initial.converged) throw std::runtime_error("the initial solve did not converge: " + run.initial.message);
+    if (!run.initial.converged) throw std::runtime_error("the initial solve did not converge: " + whyNotConverged(run.initial));
     // Each moving object chosen (the first is the run's selection), and
     // where its motion starts.
     std::vector<glm::dmat4> startTransform;
@@ -201,7 +202,7 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
                 // once read 679% rms).
                 if (!st.converged)
                     std::fprintf(stderr, "warning: the full solve of frame %d did not converge: %s\n", f,
-                                 st.message.c_str());
+                                 whyNotConverged(st).c_str());
                 references->seconds.push_back(secondsSince(t));
                 references->samples.push_back(full.samples());
                 references->fullConverged.push_back(st.converged);
@@ -219,7 +220,7 @@ AnimationRun runAnimation(const Scene& scene, const EngineSettings& settings, co
                         converged.solve(progressOnStderr("frame " + std::to_string(f) + " reference solve"));
                     if (!st.converged)
                         std::fprintf(stderr, "warning: the reference of frame %d (epsilon %g) did not converge: %s\n", f,
-                                     finer.epsilon, st.message.c_str());
+                                     finer.epsilon, whyNotConverged(st).c_str());
                     references->convergedSeconds.push_back(secondsSince(t));
                     references->converged.push_back(converged.samples());
                 }

@@ -104,12 +104,7 @@ int solve(const SolveSettings& s) {
     warnings.insert(warnings.end(), st.warnings.begin(), st.warnings.end());
     // A solve that did not converge fails (exit 1) and says why; a converged
     // one may still carry a note.
-    if (!st.converged) {
-        // The engine's message may say it itself (the iteration limit).
-        const std::string said = "did not converge: ";
-        const std::string why = st.message.rfind(said, 0) == 0 ? st.message.substr(said.size()) : st.message;
-        std::fprintf(stderr, "error: the solve did not converge: %s\n", why.empty() ? "no reason given" : why.c_str());
-    }
+    if (!st.converged) std::fprintf(stderr, "error: the solve did not converge: %s\n", whyNotConverged(st).c_str());
     else if (!st.message.empty())
         std::fprintf(stderr, "solve: %s\n", st.message.c_str());
 

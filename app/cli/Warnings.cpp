@@ -58,4 +58,10 @@ void printWarnings(const std::vector<Warning>& warnings) {
     }
 }
 
+std::string whyNotConverged(const SolveStats& stats) {
+    const std::string said = "did not converge: ";
+    const std::string why = stats.message.rfind(said, 0) == 0 ? stats.message.substr(said.size()) : stats.message;
+    return why.empty() ? "no reason given" : why;
+}
+
 }  // namespace rad::cli

@@ -4,6 +4,7 @@
 // limit). The CLI prints them on stderr and lists them in the solve report
 // (cli/Report.h), the viewer in its panel.
 
+#include <string>
 #include <vector>
 
 #include "radiosity/Gltf.h"
@@ -24,5 +25,10 @@ void printImportNotes(const ImportNotes& notes);
 // "warning: <message>" on stderr, one line per warning; a kind with more
 // than three prints only its largest (by amount) and how many more there are.
 void printWarnings(const std::vector<Warning>& warnings);
+
+// Why a solve did not converge, to follow "... did not converge: ": its
+// message without the engine's own "did not converge: " (the iteration
+// limit's), or "no reason given".
+std::string whyNotConverged(const SolveStats& stats);
 
 }  // namespace rad::cli

@@ -10,14 +10,13 @@
 // two, at least kFinestScale. A large polygon (kLargeShare of the surface a
 // room's points see, or more: a storey's walls and floor) is refined for
 // its own light alone: its light over the mean (of the strongest channel),
-// at least kLargeFinestScale.
-// Its light is much of what is seen there; the many small dim polygons
-// under furniture and in shelves are not, and refining them as finely took
-// `office` 23% more links (2.9 s, over the 2 s its solve may take) for 4.1%
-// from Cycles against 4.3%. Where the light is sent matters as much (the bright
-// storey's links into the dark one), and those links have dark receivers
-// too; refining dark sources among themselves helped little (measured in
-// the README).
+// at least kLargeFinestScale: its light is much of what is seen there; the
+// many small dim polygons under furniture and in shelves are not, and
+// refining them as finely took `office` 23% more links (2.9 s, over the 2 s
+// its solve may take) for 4.1% from Cycles against 4.3%. Where the light is
+// sent matters as much (the bright storey's links into the dark one), and
+// those links have dark receivers too; refining dark sources among
+// themselves helped little (measured in the README).
 //
 // The scales are fixed from then on: moves and edits keep them, so that a
 // scene moved back to where it was solved is refined as it was. Rounding to

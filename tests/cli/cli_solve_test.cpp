@@ -168,6 +168,12 @@ TEST(CliSolve, OneSweepSaysItCannotEstimateWhatRemains) {
     EXPECT_NE(r.output.find("takes two sweeps"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("remaining error is 0 "), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("did not converge: did not converge"), std::string::npos) << r.output;
+    // animate's initial solve says it the same way.
+    const auto a = runCli("animate " + shellQuote(kCornell) + " --object tall-block --translate 0.1,0,0 --frames 1 "
+                          "--max-iterations 1");
+    EXPECT_EQ(a.exitCode, 1) << a.output;
+    EXPECT_NE(a.output.find("the initial solve did not converge: after 1 sweep the change was "), std::string::npos)
+        << a.output;
 }
 
 // Issue 11: a memory limit hit is not a converged solve. A tiny --max-memory
