@@ -1290,7 +1290,6 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
             for (std::vector<ElementId> stack{top}; !stack.empty();) {
                 const ElementId el = stack.back();
                 stack.pop_back();
-                s.hierarchy[el].emission = m.emission;
                 s.hierarchy[el].reflectance = surfaceReflectance(s.scene, p, s.hierarchy[el].corners());
                 for (ElementId c : s.hierarchy[el].children) stack.push_back(c);
             }

@@ -1,12 +1,13 @@
 #pragma once
 // H-elements (paper sec. 3.1): clusters and surface elements in one hierarchy.
 
+#include <array>
 #include <cstdint>
 #include <limits>
-#include <vector>
 
 #include <glm/glm.hpp>
 
+#include "hierarchy/IdList.h"
 #include "hierarchy/IndexRange.h"
 #include "links/FormFactor.h"
 #include "radiosity/Scene.h"
@@ -49,26 +50,23 @@ struct HElement {
     // order (links/SourceOrder.h) until Refiner::sortLinkLists.
     bool unordered = false;
     std::int8_t level = 0;  // of the oracle's steps (below)
-    std::vector<ElementId> children;  // clusters: any number; surfaces: none or four
+    IdList children;        // clusters: any number; surfaces: none or four
 
     // Geometry. Surfaces: the patch, a part of input polygon `polygon`, given
     // by the parametric corners (u,v) of that polygon (barycentric-like for
-    // triangles), which the display uses to find shared vertices.
+    // triangles), which the display uses to find shared vertices; its corners
+    // in space are made from them when asked (Hierarchy::patch), as the
+    // polygon stands.
     // Single precision: the corners are dyadic fractions (halves of halves),
     // exact in a float's 24-bit mantissa down to kMaxDepth levels: elements
     // of 4^-24 (about 4e-15) of the polygon's area, far below any useful
     // area threshold (the index ranges would allow 31 levels).
-    PatchGeometry patch;
     std::array<glm::vec2, 4> param{};
     std::uint32_t polygon = kNone;
     std::uint32_t object = kNone;  // set for surfaces and for a whole object's cluster
-    glm::dvec3 normal{0.0};        // surfaces
+    // (A surface's normal is its polygon's: Hierarchy::normal.)
     glm::dvec3 center{0.0};
     double area = 0.0;  // surfaces: own area; clusters: total surface area inside
-
-    // Material (surfaces).
-    glm::dvec3 reflectance{0.0};
-    glm::dvec3 emission{0.0};
 
     // Solution state (double precision: the in-place gather adds differences).
     // Surfaces: the irradiance gathered on their own active links, and the sum
@@ -107,16 +105,20 @@ struct HElement {
     // brightest part only as long as the link is fine enough: refinement
     // judges surfaces by this (update/OracleSteps.h).
     float peak = 0.0f;
+    // Material (surfaces): the reflectance of the part of the polygon's
+    // texture it covers, in single precision like the material's colour it
+    // comes from (its emission is its polygon's: Hierarchy::emission).
+    glm::vec3 reflectance{0.0f};
 
     // Links arriving here (this element is the receiver), in source order
     // (links/SourceOrder.h).
-    std::vector<LinkId> links;   // active
-    std::vector<LinkId> plinks;  // passive: refined, kept as line-space parents
+    IdList links;   // active
+    IdList plinks;  // passive: refined, kept as line-space parents
     // Active links leaving this element (it is their source), for further
     // bounces (sec. 5.3.2) and to know what still depends on it; and the
     // p-links leaving it, judged again when its oracle changes.
-    std::vector<LinkId> outLinks;
-    std::vector<LinkId> outPlinks;
+    IdList outLinks;
+    IdList outPlinks;
 
     static constexpr int kMaxDepth = 24;  // quadtree levels below a polygon
     bool isLeaf() const { return children.empty(); }

@@ -53,14 +53,6 @@ void splitMedian(std::vector<std::uint32_t>& items, CenterOf centerOf, std::vect
 
 }  // namespace
 
-glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv) {
-    if (p.vertexCount == 3) return p.vertices[0] + uv.x * (p.vertices[1] - p.vertices[0]) + uv.y * (p.vertices[2] - p.vertices[0]);
-    // Bilinear over the quad; a planar convex quad maps sub-squares to planar convex quads.
-    const glm::dvec3 a = glm::mix(p.vertices[0], p.vertices[1], uv.x);
-    const glm::dvec3 b = glm::mix(p.vertices[3], p.vertices[2], uv.x);
-    return glm::mix(a, b, uv.y);
-}
-
 glm::dvec2 polygonTexCoord(const Polygon& p, const glm::dvec2& uv) {
     const auto t = [&](int k) { return glm::dvec2(p.uv[k]); };
     if (p.vertexCount == 3) return t(0) + uv.x * (t(1) - t(0)) + uv.y * (t(2) - t(0));
@@ -131,10 +123,15 @@ const std::array<glm::dvec2, 16>& polygonSampleParams(int vertexCount) {
 }
 
 Hierarchy::Hierarchy(const Scene& scene, double minArea, std::vector<double> objectMinArea)
-    : scene_(scene), polygonElements_(scene.polygons.size(), kNone), polygonLeaves_(scene.polygons.size(), 0),
+    : scene_(scene),
+      polygonElements_(scene.polygons.size(), kNone),
+      polygonNormals_(scene.polygons.size()),
+      polygonLeaves_(scene.polygons.size(), 0),
       meshTouched_(scene.polygons.size(), 1),
       reshapedMark_(scene.polygons.size(), 0),
-      objectClusters_(scene.objects.size(), kNone), minArea_(minArea), objectMinArea_(std::move(objectMinArea)) {
+      objectClusters_(scene.objects.size(), kNone),
+      minArea_(minArea),
+      objectMinArea_(std::move(objectMinArea)) {
     std::vector<std::uint32_t> dynamicObjects, staticObjects;
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
         if (scene.objects[o].polygonCount == 0) continue;
@@ -153,14 +150,14 @@ Hierarchy::Hierarchy(const Scene& scene, double minArea, std::vector<double> obj
             [&](std::uint32_t o) { return buildObjectCluster(scene, o); });
         // Avoid a chain of single-child clusters.
         if (dynamicObjects.empty()) {
-            top = elements_[s].children;
+            top.assign(elements_[s].children.begin(), elements_[s].children.end());
             for (ElementId c : top) elements_[c].parent = root_;
             release(s);
         } else {
             top.push_back(s);
         }
     }
-    elements_[root_].children = top;
+    elements_[root_].children.assign(top.begin(), top.end());
     for (ElementId c : top) elements_[c].parent = root_;
     finishCluster(root_);
     assignRanges(root_, 0, false);
@@ -215,7 +212,7 @@ ElementId Hierarchy::buildTree(std::vector<std::uint32_t> items, std::uint32_t o
         children.push_back(buildTree(std::move(right), object, centerOf, makeLeaf));
     }
     for (ElementId c : children) elements_[c].parent = id;
-    elements_[id].children = std::move(children);
+    elements_[id].children.assign(children.begin(), children.end());
     finishCluster(id);
     return id;
 }
@@ -247,20 +244,19 @@ ElementId Hierarchy::makeSurface(const Scene& scene, std::uint32_t polygon) {
     e.kind = ElementKind::Surface;
     e.polygon = polygon;
     e.object = p.object;
-    e.patch.n = p.vertexCount;
-    for (int i = 0; i < p.vertexCount; ++i) e.patch.v[i] = p.vertices[i];
     e.param = p.vertexCount == 3 ? std::array<glm::vec2, 4>{glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(0, 1), glm::vec2(0)}
                                  : std::array<glm::vec2, 4>{glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)};
-    e.normal = p.normal();
+    polygonNormals_[polygon] = p.normal();
     e.area = p.area();
-    e.center = patchCentroid(e.patch);
+    PatchGeometry patch;
+    patch.n = p.vertexCount;
+    for (int i = 0; i < p.vertexCount; ++i) patch.v[i] = p.vertices[i];
+    e.center = patchCentroid(patch);
     ElementBounds bounds;
     for (int i = 0; i < p.vertexCount; ++i) bounds.box.extend(p.vertices[i]);
-    const Material& m = scene.materials[p.material];
     e.reflectance = surfaceReflectance(scene, polygon, e.corners());
-    e.emission = m.emission;
     const ElementId id = add(std::move(e), bounds);
-    quadrature_[id] = pack(quadraturePoints(elements_[id].patch), elements_[id].patch.v[0]);
+    quadrature_[id] = pack(quadraturePoints(this->patch(id)), firstCorner(id));
     polygonElements_[polygon] = id;
     polygonLeaves_[polygon] = 1;
     meshTouched_[polygon] = 1;
@@ -305,11 +301,12 @@ void Hierarchy::finishCluster(ElementId id, bool turned) {
         const HElement& child = elements_[k];
         if (child.isSurface()) {
             const Polygon& p = scene_.polygons[child.polygon];
-            surfaceFacets.push_back({child.normal, child.area, 1.0f, 0});
+            surfaceFacets.push_back({normal(child), child.area, 1.0f, 0});
             auto& samples = surfaceSamples.emplace_back();
             const auto& uv = polygonSampleParams(p.vertexCount);
-            const std::uint32_t normal = ClusterShape::Sample::encode(child.normal);
-            for (int i = 0; i < 16; ++i) samples[i] = {glm::vec3(polygonPoint(p, uv[i]) - c.center), normal, child.polygon};
+            const std::uint32_t encoded = ClusterShape::Sample::encode(normal(child));
+            for (int i = 0; i < 16; ++i)
+                samples[i] = {glm::vec3(polygonPoint(p, uv[i]) - c.center), encoded, child.polygon};
             parts.push_back({std::span(&surfaceFacets.back(), 1), std::span(samples), child.area / 16.0});
         } else {
             const ClusterShape& cs = shapes_[child.shape];
@@ -401,14 +398,14 @@ std::uint64_t Hierarchy::assignRanges(ElementId id, std::uint64_t first, bool re
         return bounds_[id].range.last;
     }
     std::uint64_t last = first;
-    for (ElementId c : std::vector<ElementId>(e.children))
+    for (ElementId c : IdList(e.children))
         last = assignRanges(c, checkedAdd(last, 1, "cluster"), renumber);
     bounds_[id].range = {first, last};
     return last;
 }
 
 void Hierarchy::assignQuadtreeRanges(ElementId surface) {
-    const std::vector<ElementId>& kids = elements_[surface].children;
+    const IdList& kids = elements_[surface].children;
     for (std::size_t k = 0; k < kids.size(); ++k) {
         bounds_[kids[k]].range = quadtreeChildRange(bounds_[surface].range, static_cast<int>(k));
         assignQuadtreeRanges(kids[k]);
@@ -441,7 +438,7 @@ void Hierarchy::attachToRoot(ElementId cluster) {
     const std::vector<ElementId> emptied = emptiedBy(cluster);
     const ElementId top = emptied.empty() ? cluster : emptied.back();
     const ElementId parent = elements_[top].parent;
-    std::erase(elements_[parent].children, top);
+    elements_[parent].children.eraseValue(top);
     for (ElementId e : emptied) release(e);
     finishCluster(parent);
     refreshAncestors(parent);
@@ -468,7 +465,7 @@ void Hierarchy::subdivide(ElementId id) {
     // Triangles: three corner triangles and the middle one (same winding).
     std::array<std::array<glm::dvec2, 4>, 4> params;
     const std::array<glm::dvec2, 4> q = parent.corners();
-    if (parent.patch.n == 4) {
+    if (cornerCount(id) == 4) {
         const glm::dvec2 m01 = 0.5 * (q[0] + q[1]), m12 = 0.5 * (q[1] + q[2]), m23 = 0.5 * (q[2] + q[3]),
                          m30 = 0.5 * (q[3] + q[0]), mc = 0.25 * (q[0] + q[1] + q[2] + q[3]);
         params = {{{q[0], m01, mc, m30}, {m01, q[1], m12, mc}, {mc, m12, q[2], m23}, {m30, mc, m23, q[3]}}};
@@ -485,10 +482,7 @@ void Hierarchy::subdivide(ElementId id) {
         c.object = parent.object;
         c.depth = static_cast<std::uint8_t>(parent.depth + 1);
         for (int i = 0; i < 4; ++i) c.param[i] = glm::vec2(params[k][i]);
-        c.patch.n = parent.patch.n;
-        c.normal = parent.normal;
         c.reflectance = surfaceReflectance(scene_, parent.polygon, params[k]);
-        c.emission = parent.emission;
         c.radiosity = parent.radiosity;
         c.peak = luminance(parent.radiosity);
         c.gathered = parent.gathered;
@@ -498,7 +492,7 @@ void Hierarchy::subdivide(ElementId id) {
         c.level = parent.level;
         kids.push_back(add(std::move(c), ElementBounds{quadtreeChildRange(parentRange, k), Aabb{}}));
     }
-    elements_[id].children = kids;
+    elements_[id].children.assign(kids.begin(), kids.end());
     markReshaped(parent.polygon);
     polygonLeaves_[parent.polygon] += 3;  // a leaf became four
     reshapedLeaves_ += 3;
@@ -512,8 +506,8 @@ void Hierarchy::removeChildren(ElementId id) {
         touchMesh(polygon);
         markReshaped(polygon);
     }
-    std::vector<ElementId> stack = std::move(elements_[id].children);
-    elements_[id].children.clear();
+    std::vector<ElementId> stack(elements_[id].children.begin(), elements_[id].children.end());
+    elements_[id].children = IdList();
     if (surface && !stack.empty()) ++polygonLeaves_[polygon];  // a leaf now
     while (!stack.empty()) {
         const ElementId e = stack.back();
@@ -539,19 +533,19 @@ void Hierarchy::updateGeometry(ElementId id, bool turned) {
     HElement& e = elements_[id];
     if (e.isSurface()) {
         const Polygon& p = scene_.polygons[e.polygon];
-        for (int i = 0; i < e.patch.n; ++i) e.patch.v[i] = polygonPoint(p, glm::dvec2(e.param[i]));
-        e.normal = p.normal();
-        e.area = polygonArea(e.patch);
+        const PatchGeometry patch = this->patch(id);
+        polygonNormals_[e.polygon] = p.normal();
+        e.area = polygonArea(patch);
         Aabb& box = bounds_[id].box;
         box = Aabb{};
-        for (int i = 0; i < e.patch.n; ++i) box.extend(e.patch.v[i]);
-        e.center = patchCentroid(e.patch);
-        quadrature_[id] = pack(quadraturePoints(e.patch), e.patch.v[0]);
+        for (int i = 0; i < patch.n; ++i) box.extend(patch.v[i]);
+        e.center = patchCentroid(patch);
+        quadrature_[id] = pack(quadraturePoints(patch), patch.v[0]);
         meshTouched_[e.polygon] = 1;  // the same polygon from one thread only: disjoint subtrees
     }
     // The subtrees are disjoint: a moved object's clusters, whose
     // orientation is rebuilt, on all cores.
-    const std::vector<ElementId>& children = e.children;
+    const IdList& children = e.children;
     if (!e.isSurface() && children.size() > 1)
         tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) { updateGeometry(children[i], turned); });
     else
@@ -562,9 +556,9 @@ void Hierarchy::updateGeometry(ElementId id, bool turned) {
 namespace {
 
 // Whether uv lies in the convex parametric polygon of an element (edges count).
-bool paramContains(const HElement& e, const glm::dvec2& uv) {
-    for (int k = 0; k < e.patch.n; ++k) {
-        const glm::dvec2 a(e.param[k]), b(e.param[(k + 1) % e.patch.n]);
+bool paramContains(const HElement& e, int corners, const glm::dvec2& uv) {
+    for (int k = 0; k < corners; ++k) {
+        const glm::dvec2 a(e.param[k]), b(e.param[(k + 1) % corners]);
         if ((b.x - a.x) * (uv.y - a.y) - (b.y - a.y) * (uv.x - a.x) < -1e-12) return false;
     }
     return true;
@@ -579,7 +573,7 @@ std::vector<ElementId> Hierarchy::pathTo(std::uint32_t polygon, const glm::dvec2
     for (ElementId e = polygonElements_[polygon]; !elements_[e].isLeaf();) {
         ElementId next = kNone;
         for (ElementId c : elements_[e].children)
-            if (paramContains(elements_[c], uv)) {
+            if (paramContains(elements_[c], cornerCount(c), uv)) {
                 next = c;
                 break;
             }

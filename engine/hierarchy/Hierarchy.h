@@ -21,7 +21,15 @@ namespace rad {
 
 // The point with parametric coordinates uv on a polygon (as in HElement::param:
 // bilinear on a quad, barycentric-like on a triangle).
-glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv);
+inline glm::dvec3 polygonPoint(const Polygon& p, const glm::dvec2& uv) {
+    if (p.vertexCount == 3)
+        return p.vertices[0] + uv.x * (p.vertices[1] - p.vertices[0]) +
+               uv.y * (p.vertices[2] - p.vertices[0]);
+    // Bilinear over the quad; a planar convex quad maps sub-squares to planar convex quads.
+    const glm::dvec3 a = glm::mix(p.vertices[0], p.vertices[1], uv.x);
+    const glm::dvec3 b = glm::mix(p.vertices[3], p.vertices[2], uv.x);
+    return glm::mix(a, b, uv.y);
+}
 // The texture coordinates at parametric uv (the same interpolation).
 glm::dvec2 polygonTexCoord(const Polygon& p, const glm::dvec2& uv);
 // The reflectance of the part of a polygon with the given parametric corners
@@ -57,9 +65,42 @@ public:
     // An element's index range (sec. 3.2) and box, kept apart (ElementBounds).
     const IndexRange& range(ElementId id) const { return bounds_[id].range; }
     const Aabb& box(ElementId id) const { return bounds_[id].box; }
+    // A surface's patch: its parametric corners (HElement::param) on its
+    // polygon, made when asked rather than kept (96 bytes an element); an
+    // empty patch for a cluster.
+    PatchGeometry patch(ElementId id) const {
+        const HElement& e = elements_[id];
+        PatchGeometry g;
+        if (!e.isSurface()) return g;
+        const Polygon& p = scene_.polygons[e.polygon];
+        g.n = p.vertexCount;
+        for (int i = 0; i < g.n; ++i) g.v[i] = polygonPoint(p, glm::dvec2(e.param[i]));
+        return g;
+    }
+    // Its first corner, where its quadrature points are kept from.
+    glm::dvec3 firstCorner(ElementId id) const {
+        const HElement& e = elements_[id];
+        return e.isSurface() ? polygonPoint(scene_.polygons[e.polygon], glm::dvec2(e.param[0]))
+                             : glm::dvec3(0.0);
+    }
+    // A surface's unit normal and emission: its polygon's (zero for a
+    // cluster), kept once per polygon rather than per element.
+    glm::dvec3 normal(const HElement& e) const {
+        return e.isSurface() ? polygonNormals_[e.polygon] : glm::dvec3(0.0);
+    }
+    glm::dvec3 emission(const HElement& e) const {
+        return e.isSurface() ? scene_.materials[scene_.polygons[e.polygon].material].emission
+                             : glm::dvec3(0.0);
+    }
+    // How many corners a surface has (3 or 4).
+    int cornerCount(ElementId id) const {
+        return scene_.polygons[elements_[id].polygon].vertexCount;
+    }
     // A surface's quadraturePoints, made with its patch (none for a cluster);
     // kept packed (PackedQuadrature).
-    QuadraturePoints quadrature(ElementId id) const { return unpack(quadrature_[id], elements_[id].patch.v[0]); }
+    QuadraturePoints quadrature(ElementId id) const {
+        return unpack(quadrature_[id], firstCorner(id));
+    }
     std::size_t size() const { return elements_.size(); }
     std::size_t liveCount() const { return elements_.size() - free_.size(); }
     // Not freed (every element but the root has a parent until release()).
@@ -197,6 +238,13 @@ public:
 
     // Bytes held by elements and their link lists.
     std::size_t memoryBytes() const;
+    // What one more element holds, its link lists and a cluster's shape
+    // left out: its record, bounds and quadrature points, and its slot in
+    // the side table of punctual lights' irradiance once that exists.
+    std::size_t bytesPerElement() const {
+        return sizeof(HElement) + sizeof(ElementBounds) + sizeof(PackedQuadrature) +
+               (direct_.size() > 0 ? sizeof(glm::dvec3) : 0);
+    }
 
 private:
     ElementId add(HElement e, const ElementBounds& bounds = {});
@@ -226,6 +274,7 @@ private:
     std::vector<ClusterShape> shapes_;
     std::vector<std::uint32_t> freeShapes_;
     std::vector<ElementId> polygonElements_;
+    std::vector<glm::dvec3> polygonNormals_;    // per polygon, as it stands (normal)
     std::vector<std::uint32_t> polygonLeaves_;  // per polygon (polygonLeaves)
     std::vector<std::uint8_t> meshTouched_;  // per polygon (touchMesh)
     std::vector<std::uint8_t> reshapedMark_;  // per polygon (markReshaped)

@@ -68,7 +68,8 @@ bool LightLinks::facesLight(const PunctualLight& light, std::uint32_t polygon) c
 
 LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId receiver) const {
     const HElement& e = h_[receiver];
-    const SampleSet points = patchSamples(e.patch, kOrder);
+    const PatchGeometry patch = h_.patch(receiver);
+    const SampleSet points = patchSamples(patch, kOrder);
     // Per point: cos(theta) falloff / r^2, unoccluded; the distance kept off
     // zero for a light that sits on the surface (its cosine is zero there).
     const double floor2 = 1e-6 * e.area;
@@ -77,7 +78,7 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
         const glm::dvec3 d = light.position - p;
         const double r2 = std::max(glm::dot(d, d), floor2);
         const glm::dvec3 toward = d / std::sqrt(r2);
-        const double cosTheta = glm::dot(e.normal, toward);
+        const double cosTheta = glm::dot(h_.normal(e), toward);
         return cosTheta > 0.0 ? falloff(-toward) * cosTheta / r2 : 0.0;
     };
     std::array<RayCaster::Segment, RayCaster::kMaxSegments> segments;
@@ -117,10 +118,10 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
             probeG[probes] = v;
             segments[probes++] = {p, light.position, e.polygon, RayCaster::kNoPolygon};
         };
-        const int n = e.patch.n;
+        const int n = patch.n;
         for (int k = 0; k < n; ++k) {
-            probe(e.patch.v[k]);
-            probe(0.5 * (e.patch.v[k] + e.patch.v[(k + 1) % n]));
+            probe(patch.v[k]);
+            probe(0.5 * (patch.v[k] + patch.v[(k + 1) % n]));
         }
         probe(e.center);
         const std::uint16_t probeShadowed = blocked(probes);

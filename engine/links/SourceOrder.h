@@ -27,7 +27,7 @@ inline std::uint64_t sourceIndex(const Hierarchy& h, const LinkStore& links, Lin
 }
 
 // Puts a list in source order (ties, which a list never has, by id).
-inline void sortBySource(const Hierarchy& h, const LinkStore& links, std::vector<LinkId>& list) {
+inline void sortBySource(const Hierarchy& h, const LinkStore& links, IdList& list) {
     std::vector<std::pair<std::uint64_t, LinkId>> keyed;
     keyed.reserve(list.size());
     for (LinkId id : list) keyed.emplace_back(sourceIndex(h, links, id), id);
@@ -40,8 +40,8 @@ inline void sortBySource(const Hierarchy& h, const LinkStore& links, std::vector
 // source's range), so it looks at few: the ends first (a range often holds
 // all of a list, or begins before it), then the end of the run by galloping
 // from its start (runs are mostly short).
-inline std::span<const LinkId> linksFrom(const Hierarchy& h, const LinkStore& links, const std::vector<LinkId>& list,
-                                         const IndexRange& sources) {
+inline std::span<const LinkId> linksFrom(const Hierarchy& h, const LinkStore& links,
+                                         std::span<const LinkId> list, const IndexRange& sources) {
     const auto key = [&](LinkId id) { return sourceIndex(h, links, id); };
     const auto begin = list.begin(), end = list.end();
     if (begin == end) return {};

@@ -16,7 +16,7 @@ std::vector<float> receiverLightScales(const Scene& scene, const Hierarchy& h, d
         for (ElementId id : leaves) {
             const HElement& e = h[id];
             area[p] += e.area;
-            const glm::dvec3 reflected = e.radiosity - e.emission;
+            const glm::dvec3 reflected = e.radiosity - h.emission(e);
             light[p] += e.area * std::max(0.0, luminance(reflected));
             strongest[p] += e.area * std::max({0.0, reflected.x, reflected.y, reflected.z});
         }

@@ -19,7 +19,7 @@ double radius(const Aabb& box) { return 0.5 * glm::length(box.extent()); }
 
 // Link lists are sets: removal swaps the last entry in (a light can hold
 // thousands of outgoing links; shifting them on every removal would not do).
-void unorderedErase(std::vector<LinkId>& list, LinkId id) {
+void unorderedErase(IdList& list, LinkId id) {
     const auto it = std::find(list.begin(), list.end(), id);
     // A link missing from its list is a broken hierarchy (a link refined
     // twice); going on would write past the list.
@@ -30,7 +30,7 @@ void unorderedErase(std::vector<LinkId>& list, LinkId id) {
 
 // A receiver's lists keep their source order (links/SourceOrder.h) when a
 // link leaves them.
-void orderedErase(std::vector<LinkId>& list, LinkId id) {
+void orderedErase(IdList& list, LinkId id) {
     const auto it = std::find(list.begin(), list.end(), id);
     if (it == list.end()) throw std::logic_error("link " + std::to_string(id) + " is not in the list it is erased from");
     list.erase(it);
@@ -39,12 +39,16 @@ void orderedErase(std::vector<LinkId>& list, LinkId id) {
 // The part of surface `e` in front of the plane of surface `other`, as the
 // centroids of its fan's triangles (at most three: a quad cut by a plane has
 // at most five corners), each standing for its triangle's area.
-SourcePoints frontPart(const HElement& e, const HElement& other) {
+SourcePoints frontPart(const Hierarchy& h, ElementId id, ElementId otherId) {
+    const HElement& e = h[id];
+    const HElement& other = h[otherId];
+    const PatchGeometry patch = h.patch(id);
+    const glm::dvec3 normal = h.normal(other);
     std::array<glm::dvec3, 8> cut;
     int m = 0;
-    const auto height = [&](const glm::dvec3& p) { return glm::dot(other.normal, p - other.center); };
-    for (int k = 0; k < e.patch.n && m + 2 <= int(cut.size()); ++k) {
-        const glm::dvec3 a = e.patch.v[k], b = e.patch.v[(k + 1) % e.patch.n];
+    const auto height = [&](const glm::dvec3& p) { return glm::dot(normal, p - other.center); };
+    for (int k = 0; k < patch.n && m + 2 <= int(cut.size()); ++k) {
+        const glm::dvec3 a = patch.v[k], b = patch.v[(k + 1) % patch.n];
         const double ha = height(a), hb = height(b);
         if (ha > 0.0) cut[m++] = a;
         if ((ha > 0.0) != (hb > 0.0)) cut[m++] = a + (b - a) * (ha / (ha - hb));
@@ -54,7 +58,7 @@ SourcePoints frontPart(const HElement& e, const HElement& other) {
         const double area = 0.5 * glm::length(glm::cross(cut[k] - cut[0], cut[k + 1] - cut[0]));
         if (!(area > 0.0)) continue;
         out.p[out.n] = (cut[0] + cut[k] + cut[k + 1]) / 3.0;
-        out.normal[out.n] = e.normal;
+        out.normal[out.n] = h.normal(e);
         out.polygon[out.n] = e.polygon;
         out.area[out.n++] = area;
     }
@@ -98,7 +102,7 @@ std::size_t Refiner::segments(ElementId s, ElementId r, Segments& out, RayWeight
     // element across an uplight's plane, its points below it): the rays run
     // between the parts of each in front of the other.
     if (!(total > 0.0) && h_[s].isSurface() && h_[r].isSurface()) {
-        const SourcePoints fs = frontPart(h_[s], h_[r]), fr = frontPart(h_[r], h_[s]);
+        const SourcePoints fs = frontPart(h_, s, r), fr = frontPart(h_, r, s);
         if (fs.n > 0 && fr.n > 0) pair(fs, fr);
     }
     // Facing nowhere (a pair judged by other points): the rays count alike.
@@ -122,12 +126,13 @@ namespace {
 
 // Where a box lies with respect to a surface's plane.
 enum class Side { Front, Behind, Both };
-Side sideOf(const HElement& surface, const Aabb& surfaceBox, const Aabb& box) {
+Side sideOf(const HElement& surface, const glm::dvec3& normal, const Aabb& surfaceBox,
+            const Aabb& box) {
     const double tolerance = 1e-9 * glm::length(box.extent() + surfaceBox.extent());
     bool front = false, behind = false;
     for (int k = 0; k < 8; ++k) {
         const glm::dvec3 corner((k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z);
-        const double h = glm::dot(surface.normal, corner - surface.center);
+        const double h = glm::dot(normal, corner - surface.center);
         front = front || h > tolerance;
         behind = behind || h < -tolerance;
     }
@@ -150,8 +155,8 @@ bool Refiner::neverCarries(ElementId s, ElementId r) const {
     const HElement& a = h_[s];
     const HElement& b = h_[r];
     // One-sided: a surface sends and receives only in front of itself.
-    if (a.isSurface() && sideOf(a, h_.box(s), h_.box(r)) == Side::Behind) return true;
-    if (b.isSurface() && sideOf(b, h_.box(r), h_.box(s)) == Side::Behind) return true;
+    if (a.isSurface() && sideOf(a, h_.normal(a), h_.box(s), h_.box(r)) == Side::Behind) return true;
+    if (b.isSurface() && sideOf(b, h_.normal(b), h_.box(r), h_.box(s)) == Side::Behind) return true;
     return a.isSurface() && b.isSurface() && a.polygon == b.polygon;
 }
 
@@ -170,21 +175,23 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
         // larger patch would miss the peak of a small neighbour's kernel.
         // Order 2 from the points each element keeps.
         const auto estimate = [&](ElementId a, ElementId b, int n) {
-            return n == 2 ? estimateFormFactor(h_.quadrature(a), h_[a].patch, h_[b].patch)
-                          : estimateFormFactor(h_[a].patch, h_[b].patch, n);
+            return n == 2 ? estimateFormFactor(h_.quadrature(a), h_.patch(a), h_.patch(b))
+                          : estimateFormFactor(h_.patch(a), h_.patch(b), n);
         };
         FormFactorEstimate e = estimate(r, s, rcv.area > src.area ? 2 : order);
         if (rcv.area > src.area) e.mean = src.area / rcv.area * estimate(s, r, order).mean;
         // A surface facing the receiver close in front of it (a door 2 mm
         // before a wall) may cover a strip along the receiver's edge that the
         // Gauss points miss: the variation is judged at the corners too.
-        if (facingClose(s, r))
-            for (int k = 0; k < rcv.patch.n; ++k) {
-                const glm::dvec3 corner = rcv.patch.v[k] + 0.01 * (rcv.center - rcv.patch.v[k]);
-                const double f = pointToPolygonFormFactor(corner, rcv.normal, src.patch);
+        if (facingClose(s, r)) {
+            const PatchGeometry rp = h_.patch(r), sp = h_.patch(s);
+            for (int k = 0; k < rp.n; ++k) {
+                const glm::dvec3 corner = rp.v[k] + 0.01 * (rcv.center - rp.v[k]);
+                const double f = pointToPolygonFormFactor(corner, h_.normal(rcv), sp);
                 e.min = std::min(e.min, f);
                 e.max = std::max(e.max, f);
             }
+        }
         return e;
     }
     // A cluster end: the source as a few points (ClusterTransfer.h). A
@@ -199,7 +206,7 @@ FormFactorEstimate Refiner::unoccludedFormFactor(ElementId s, ElementId r) const
     FormFactorEstimate e;
     e.min = INFINITY;
     for (const SamplePoint& q : h_.quadrature(r)) {
-        const double f = pointToSource(source, q.p, rcv.normal);
+        const double f = pointToSource(source, q.p, h_.normal(rcv));
         e.mean += q.w * f;
         e.min = std::min(e.min, f);
         e.max = std::max(e.max, f);
@@ -340,13 +347,13 @@ void Refiner::deactivate(LinkId id) {
 }
 
 void Refiner::addOutLink(ElementId source, LinkId id) {
-    std::vector<LinkId>& out = h_[source].outLinks;
+    IdList& out = h_[source].outLinks;
     out.push_back(id);
     if (recordSenders_ && out.size() == 1) sendersChanged_.push_back(source);
 }
 
 void Refiner::eraseOutLink(ElementId source, LinkId id) {
-    std::vector<LinkId>& out = h_[source].outLinks;
+    IdList& out = h_[source].outLinks;
     unorderedErase(out, id);
     if (recordSenders_ && out.empty()) sendersChanged_.push_back(source);
 }
@@ -357,7 +364,7 @@ void Refiner::regather(LinkId id) {
     markStale(l.receiver);
 }
 
-void Refiner::append(std::vector<LinkId>& list, ElementId receiver, LinkId id) {
+void Refiner::append(IdList& list, ElementId receiver, LinkId id) {
     list.push_back(id);
     if (h_[receiver].unordered) return;
     h_[receiver].unordered = true;
@@ -454,8 +461,9 @@ bool Refiner::canSplit(ElementId e, int below) const {
 bool Refiner::facingClose(ElementId s, ElementId r) const {
     const HElement& a = h_[s];
     const HElement& b = h_[r];
-    if (!a.isSurface() || !b.isSurface() || glm::dot(a.normal, b.normal) > -0.9) return false;
-    const double gap = std::abs(glm::dot(b.normal, a.center - b.center));
+    if (!a.isSurface() || !b.isSurface() || glm::dot(h_.normal(a), h_.normal(b)) > -0.9)
+        return false;
+    const double gap = std::abs(glm::dot(h_.normal(b), a.center - b.center));
     return gap < 0.1 * std::max(radius(h_.box(s)), radius(h_.box(r)));
 }
 
@@ -470,9 +478,11 @@ bool Refiner::litAlongBy(ElementId s, ElementId r) const {
     const HElement& b = h_[r];
     // A receiver that glows itself (the faces of a glowing box, a furnace)
     // is not lit along: its own light does not fall off from the line.
-    if (!a.isSurface() || !b.isSurface() || !(luminance(a.emission) > 0.0) || luminance(b.emission) > 0.0) return false;
-    if (std::abs(glm::dot(a.normal, b.normal)) > 0.1) return false;
-    const double gap = std::abs(glm::dot(b.normal, a.center - b.center));
+    if (!a.isSurface() || !b.isSurface() || !(luminance(h_.emission(a)) > 0.0) ||
+        luminance(h_.emission(b)) > 0.0)
+        return false;
+    if (std::abs(glm::dot(h_.normal(a), h_.normal(b))) > 0.1) return false;
+    const double gap = std::abs(glm::dot(h_.normal(b), a.center - b.center));
     return gap < 1.01 * radius(h_.box(s));
 }
 
@@ -624,7 +634,8 @@ double Refiner::unrefinedPower() const {
 }
 
 std::size_t Refiner::memoryInUse() const {
-    return links_.liveCount() * (sizeof(Link) + 3 * sizeof(LinkId)) + h_.liveCount() * sizeof(HElement);
+    return links_.liveCount() * (sizeof(Link) + 3 * sizeof(LinkId)) +
+           h_.liveCount() * h_.bytesPerElement();
 }
 
 std::size_t Refiner::refineAll(const WaveReport& onWave) {
@@ -645,7 +656,8 @@ std::size_t Refiner::refineAll(std::vector<LinkId> wave, const WaveReport& onWav
             if (refines[i]) batch.push_back(wave[i]);
         if (batch.empty()) break;
         // Each refinement makes a few links and, for a surface, four elements.
-        const std::size_t growth = batch.size() * (4 * (sizeof(Link) + 3 * sizeof(LinkId)) + 4 * sizeof(HElement));
+        const std::size_t growth =
+            batch.size() * (4 * (sizeof(Link) + 3 * sizeof(LinkId)) + 4 * h_.bytesPerElement());
         if (memoryInUse() + growth > settings_.maxMemoryBytes) {
             capReached_ = true;
             break;

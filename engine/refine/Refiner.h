@@ -184,7 +184,7 @@ private:
     bool touchesMovable(ElementId e) const;
     std::vector<std::pair<ElementId, ElementId>> childPairs(const Link& link);
     // Appends to a receiver's list, which is then out of source order.
-    void append(std::vector<LinkId>& list, ElementId receiver, LinkId id);
+    void append(IdList& list, ElementId receiver, LinkId id);
     // Puts a link in its receiver's and its source's active lists, its rays
     // cast if they wait, and its transfer gathered (attach, activate).
     void enlist(LinkId id);

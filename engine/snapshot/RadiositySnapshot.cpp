@@ -105,8 +105,15 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, const glm
     corners.clear();
     for (std::uint32_t li = 0; li < leaves.size(); ++li) {
         const HElement& e = h[leaves[li]];
-        for (int k = 0; k < e.patch.n; ++k)
-            corners.push_back({lattice(e.param[k]), e.area * e.radiosity, e.area, e.patch.v[k], {}, e.area * e.reflectance, li});
+        const PatchGeometry patch = h.patch(leaves[li]);
+        for (int k = 0; k < patch.n; ++k)
+            corners.push_back({lattice(e.param[k]),
+                               e.area * e.radiosity,
+                               e.area,
+                               patch.v[k],
+                               {},
+                               e.area * glm::dvec3(e.reflectance),
+                               li});
     }
     std::sort(corners.begin(), corners.end(), [](const Vertex& a, const Vertex& b) { return a.p < b.p; });
     std::vector<Vertex>& vertices = scratch.vertices;  // one per lattice point, in lattice order
@@ -143,8 +150,9 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, const glm
     for (ElementId l : leaves) {
         const HElement& e = h[l];
         ringAt.push_back(static_cast<std::uint32_t>(ring.size()));
-        for (int k = 0; k < e.patch.n; ++k) {
-            const LatticePoint a = lattice(e.param[k]), b = lattice(e.param[(k + 1) % e.patch.n]);
+        const int n = h.cornerCount(l);
+        for (int k = 0; k < n; ++k) {
+            const LatticePoint a = lattice(e.param[k]), b = lattice(e.param[(k + 1) % n]);
             const auto corner = find(a);
             ring.push_back(static_cast<std::uint32_t>(corner - vertices.begin()));
             const std::int64_t n = std::max(std::llabs(b.i - a.i), std::llabs(b.j - a.j));
@@ -164,7 +172,7 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, const glm
     ringAt.push_back(static_cast<std::uint32_t>(ring.size()));
 
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-    const glm::vec3 normal(h[top].normal);
+    const glm::vec3 normal(h.normal(h[top]));
     // Textured display (Snapshot.h): an emitter is not textured.
     const Polygon& polygon = scene.polygons[h[top].polygon];
     const Material& material = scene.materials[polygon.material];
@@ -173,7 +181,7 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, const glm
     // The outline of the parametric domain: the unit square of a quad, the
     // triangle (0,0), (1,0), (0,1) of a triangle, on the lattice.
     const auto size = static_cast<std::int64_t>(scale);
-    const bool triangle = h[top].patch.n == 3;
+    const bool triangle = h.cornerCount(top) == 3;
     for (const Vertex& v : vertices) {
         const LatticePoint& q = v.p;
         // The edges it lies on, edge k from polygon vertex k to k + 1. One
@@ -209,7 +217,7 @@ void addPolygon(const Scene& scene, const Hierarchy& h, ElementId top, const glm
     for (std::size_t li = 0; li < leaves.size(); ++li) {
         const auto first = ring.begin() + ringAt[li], last = ring.begin() + ringAt[li + 1];
         // No T-vertex: a fan from the first corner, the triangles it always had.
-        if (last - first == h[leaves[li]].patch.n) {
+        if (last - first == h.cornerCount(leaves[li])) {
             for (auto k = first + 1; k + 1 < last; ++k)
                 mesh.indices.insert(mesh.indices.end(), {base + *first, base + *k, base + k[1]});
             continue;
@@ -383,7 +391,8 @@ void recolour(const Hierarchy& h, const std::vector<ElementId>& leaves, Snapshot
 
 // 64-bit hashes of what a polygon's mesh is made from: its material (an
 // emitter is drawn untextured), its leaves (which, and how deep), their
-// corners in space, their reflectance and the normal (the shape); and their
+// corners (in the polygon, and the polygon's in space), their reflectance and
+// the normal (the shape); and their
 // radiosity (the light). A change of the shape re-meshes the polygon, of the
 // light alone colours it again. Word by word, with a multiply-xorshift mix:
 // it runs over every leaf of the scene each frame.
@@ -400,14 +409,16 @@ std::pair<std::uint64_t, std::uint64_t> polygonSignature(const Hierarchy& h, Ele
         for (int k = 0; k < 3; ++k) add(hash, std::bit_cast<std::uint64_t>(v[k]));
     };
     add(shape, material);
+    const PatchGeometry outline = h.patch(top);
+    for (int k = 0; k < outline.n; ++k) addVector(shape, outline.v[k]);
     for (ElementId l : leaves) {
         const HElement& e = h[l];
         add(shape, std::uint64_t(l) << 8 | e.depth);
-        for (int k = 0; k < e.patch.n; ++k) addVector(shape, e.patch.v[k]);
+        for (const glm::vec2& uv : e.param) add(shape, std::bit_cast<std::uint64_t>(uv));
         addVector(shape, e.reflectance);
         addVector(light, e.radiosity);
     }
-    addVector(shape, h[top].normal);
+    addVector(shape, h.normal(h[top]));
     return {shape, light};
 }
 

@@ -34,15 +34,17 @@ glm::dvec3 localDirection(int sample, int ray) {
 
 // For a surface that is an axis-aligned rectangle (its area that of its
 // box's face), the axis of its normal; -1 otherwise.
-int planeAxis(const HElement& surface) {
+int planeAxis(const Hierarchy& h, ElementId id) {
+    const HElement& surface = h[id];
     int axis = 0;
     for (int a = 1; a < 3; ++a)
-        if (std::abs(surface.normal[a]) > std::abs(surface.normal[axis])) axis = a;
-    if (std::abs(surface.normal[axis]) < 1.0 - 1e-12 || surface.patch.n != 4) return -1;
-    glm::dvec3 lo = surface.patch.v[0], hi = lo;
+        if (std::abs(h.normal(surface)[a]) > std::abs(h.normal(surface)[axis])) axis = a;
+    if (std::abs(h.normal(surface)[axis]) < 1.0 - 1e-12 || h.cornerCount(id) != 4) return -1;
+    const PatchGeometry patch = h.patch(id);
+    glm::dvec3 lo = patch.v[0], hi = lo;
     for (int i = 1; i < 4; ++i) {
-        lo = glm::min(lo, surface.patch.v[i]);
-        hi = glm::max(hi, surface.patch.v[i]);
+        lo = glm::min(lo, patch.v[i]);
+        hi = glm::max(hi, patch.v[i]);
     }
     const glm::dvec3 e = hi - lo;
     const double face = e[(axis + 1) % 3] * e[(axis + 2) % 3];
@@ -118,7 +120,7 @@ void measureOne(Hierarchy& h, const RayCaster& rays, ElementId id, bool staticKn
             const QuadraturePoints q = h.quadrature(member);
             const glm::dvec3 p =
                 q.size() > 0 ? q.points[std::size_t(j) % q.size()].p : surface.center;
-            const glm::dvec3 normal = surface.normal;
+            const glm::dvec3 normal = h.normal(surface);
             const glm::dvec3 t =
                 glm::normalize(std::abs(normal.x) < 0.9 ? glm::cross(normal, glm::dvec3(1, 0, 0))
                                                         : glm::cross(normal, glm::dvec3(0, 1, 0)));
@@ -226,13 +228,13 @@ std::vector<ElementId> measureExposureAround(Hierarchy& h, const RayCaster& rays
             const Aabb both{glm::min(now.lo, before.lo), glm::max(now.hi, before.hi)};
             const auto alongside = [&](const Foreign& f) {
                 if (f.surface == kNone) return false;
-                const int axis = planeAxis(h[f.surface]);
+                const int axis = planeAxis(h, f.surface);
                 if (axis < 0 || std::abs(m.shift[axis]) > 1e-9 * glm::length(m.shift)) return false;
                 const int u = (axis + 1) % 3, v = (axis + 2) % 3;
                 double covered = 0.0;
                 for (const Foreign& g : foreign) {
-                    if (g.surface == kNone || planeAxis(h[g.surface]) != axis ||
-                        h[g.surface].normal[axis] * h[f.surface].normal[axis] < 0.0 ||
+                    if (g.surface == kNone || planeAxis(h, g.surface) != axis ||
+                        h.normal(h[g.surface])[axis] * h.normal(h[f.surface])[axis] < 0.0 ||
                         std::abs(g.box.lo[axis] - f.box.lo[axis]) >
                             1e-9 * glm::length(both.extent()))
                         continue;

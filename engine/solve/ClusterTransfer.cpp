@@ -92,7 +92,7 @@ SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const Aabb& towa
             for (const SamplePoint& q : points) {
                 if (out.n == SourcePoints::kMax) break;
                 out.p[out.n] = q.p;
-                out.normal[out.n] = s.normal;
+                out.normal[out.n] = h.normal(s);
                 out.polygon[out.n] = s.polygon;
                 out.area[out.n++] = q.w * s.area;
             }
@@ -100,7 +100,7 @@ SourcePoints sourcePoints(const Hierarchy& h, ElementId source, const Aabb& towa
         if (surfaceOrder == 2)
             take(h.quadrature(source));
         else
-            take(patchSamples(s.patch, surfaceOrder));
+            take(patchSamples(h.patch(source), surfaceOrder));
         return out;
     }
     // The cluster's points on surfaces facing `toward`, evenly picked from
@@ -157,7 +157,7 @@ double pointKernel(const SourcePoints& source, const glm::dvec3& x) {
 void addArrivals(const Hierarchy& h, const LinkStore& links, ElementId cluster,
                  FacetArrivals& arrivals) {
     const ClusterShape& shape = h.shape(cluster);
-    const std::vector<LinkId>& own = h[cluster].links;
+    const IdList& own = h[cluster].links;
     for (std::size_t k = 0; k < own.size(); ++k) {
         links.prefetchAhead(own, k);
         const Link& l = links[own[k]];

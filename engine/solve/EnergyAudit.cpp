@@ -74,7 +74,7 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
     tbb::parallel_for(std::size_t(0), leaves.size(), [&](std::size_t i) {
         if (!(leaving[i] > 0.0) || !std::isfinite(leaving[i])) return;
         const HElement& leaf = h[leaves[i]];
-        const glm::dvec3 n = leaf.normal;
+        const glm::dvec3 n = h.normal(leaf);
         if (n == glm::dvec3(0.0)) return;
         const auto count = static_cast<std::uint32_t>(
             std::clamp(std::lround(kRays * leaving[i] / total), 4L, 1L << 16));
@@ -82,7 +82,8 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
             glm::normalize(std::abs(n.x) > 0.5 ? glm::cross(n, glm::dvec3(0, 1, 0))
                                                : glm::cross(n, glm::dvec3(1, 0, 0)));
         const glm::dvec3 b = glm::cross(n, t);
-        const auto& v = leaf.patch.v;
+        const PatchGeometry patch = h.patch(leaves[i]);
+        const auto& v = patch.v;
         const double polygonSize = sizeOf(leaf.polygon);
         std::uint32_t missed = 0, backs = 0;
         std::vector<double>& by = backBy.local();
@@ -92,7 +93,7 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
             // plane), and a cosine-weighted direction from it.
             glm::dvec2 uv = 0.005 + 0.99 * hammersley(k, count);
             glm::dvec3 point;
-            if (leaf.patch.n == 4) {
+            if (patch.n == 4) {
                 point = glm::mix(glm::mix(v[0], v[1], uv.x), glm::mix(v[3], v[2], uv.x), uv.y);
             } else {
                 if (uv.x + uv.y > 1.0) uv = glm::dvec2(1.0) - uv;
@@ -117,7 +118,7 @@ void auditEnergy(const Scene& scene, const Hierarchy& h, const RayCaster& rays,
         // scene (an open room's lamp sends some of its light out through
         // the opening, and does not count): the emitted part of what it
         // loses (E of its B).
-        const double emitted = leaf.area * luminance(leaf.emission);
+        const double emitted = leaf.area * luminance(h.emission(leaf));
         if (2 * missed > count && emitted > 0.0) escapedBy.local()[objectOf(leaf.polygon)] += emitted * missed / count;
         back[i] = leaving[i] * backs / count;
     });

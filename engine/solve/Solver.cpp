@@ -110,7 +110,7 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
         }
         FacetArrivals arrivals = facets;
         shape.addOwn(arrivals);
-        const std::vector<ElementId>& children = e.children;
+        const IdList& children = e.children;
         // What each child inherits from this cluster's facets, in order.
         std::vector<Down> surfaceDown(children.size());
         std::vector<FacetArrivals> clusterDown(children.size());
@@ -168,7 +168,8 @@ glm::dvec3 Solver::push(ElementId id, const Down& down, const FacetArrivals& fac
             // A polygon's leaves come one after another.
             if (walk.polygons && (walk.polygons->empty() || walk.polygons->back() != e.polygon))
                 walk.polygons->push_back(e.polygon);
-            b = e.emission + e.reflectance * (arriving(here, e.polygon) + here.direct);
+            b = h_.emission(e) +
+                glm::dvec3(e.reflectance) * (arriving(here, e.polygon) + here.direct);
             if (b != e.radiosity) h_.touchMesh(e.polygon);
             walk.change += e.area * std::abs(luminance(b - e.radiosity));
             walk.total += e.area * std::abs(luminance(b));
@@ -239,8 +240,8 @@ glm::dvec3 Solver::radiosityBound() const {
     for (std::uint32_t p = 0; p < h_.polygonCount(); ++p) {
         const ElementId e = h_.polygonElement(p);
         if (e == kNone) continue;
-        emission = glm::max(emission, h_[e].emission);
-        rho = glm::max(rho, h_[e].reflectance);
+        emission = glm::max(emission, h_.emission(h_[e]));
+        rho = glm::max(rho, glm::dvec3(h_[e].reflectance));
     }
     glm::dvec3 bound(INFINITY);
     for (int c = 0; c < 3; ++c)
@@ -415,10 +416,11 @@ EnergyBalance Solver::energy() const {
         const glm::dvec3 filled = this->arriving(d, e.polygon);
         balance.filled += e.area * std::max(0.0, luminance(filled - d.totalIrradiance()));
         const glm::dvec3 arriving = filled + d.direct;
-        balance.emitted += e.area * luminance(e.emission);
+        balance.emitted += e.area * luminance(h_.emission(e));
         balance.received += e.area * luminance(arriving);
-        balance.absorbed += e.area * luminance((glm::dvec3(1.0) - e.reflectance) * arriving);
-        balance.reflected += e.area * luminance(e.reflectance * arriving);
+        balance.absorbed +=
+            e.area * luminance((glm::dvec3(1.0) - glm::dvec3(e.reflectance)) * arriving);
+        balance.reflected += e.area * luminance(glm::dvec3(e.reflectance) * arriving);
     });
     return balance;
 }

@@ -263,7 +263,8 @@ void LineSpaceUpdate::applyTransfers(const std::vector<Transfer>& transfers, dou
         if (r.dirty) continue;
         // The most the receiver's radiosity can move (a cluster's
         // members reflect at most all of it).
-        const glm::dvec3 moved = r.isSurface() ? r.reflectance * t.irradiance : t.irradiance;
+        const glm::dvec3 moved =
+            r.isSurface() ? glm::dvec3(r.reflectance) * t.irradiance : t.irradiance;
         if (waitingChange_.size() < h_.size()) waitingChange_.resize(h_.size(), -1.0);
         double& sum = waitingChange_[t.receiver];
         if (sum < 0.0) {
@@ -461,7 +462,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     RefineHeap heap;
     for (ElementId s : rose) {
         if (!h_.isLive(s)) continue;  // freed since it stepped
-        const std::vector<LinkId>& out = h_[s].outLinks;
+        const IdList& out = h_[s].outLinks;
         for (std::size_t k = 0; k < out.size(); ++k) {
             links_.prefetchAhead(out, k);
             if (refiner_.wouldRefine(links_[out[k]])) heap.push({heapKey(links_[out[k]]), out[k]});
@@ -503,7 +504,7 @@ void LineSpaceUpdate::followTheLight(const UpdateSettings& settings, FrameStats&
     const auto coarsening = std::chrono::steady_clock::now();
     for (ElementId s : coarser) {
         if (!h_.isLive(s)) continue;
-        for (LinkId id : std::vector<LinkId>(h_[s].outPlinks)) {
+        for (LinkId id : IdList(h_[s].outPlinks)) {
             const Link& l = links_[id];
             if (l.live && l.passive && l.source == s && !refiner_.wouldRefine(l)) {
                 reinstate(id);

@@ -227,8 +227,9 @@ std::vector<std::array<glm::dvec3, 2>> LineSpaceUpdate::changedOutlines() const 
         if (e >= h_.size()) continue;
         const HElement& el = h_[e];
         if (!el.isSurface() || !el.isLeaf()) continue;  // subdivided since, or never a leaf
-        for (int k = 0; k < el.patch.n; ++k) {
-            std::array<glm::dvec3, 2> edge{el.patch.v[k], el.patch.v[(k + 1) % el.patch.n]};
+        const PatchGeometry patch = h_.patch(e);
+        for (int k = 0; k < patch.n; ++k) {
+            std::array<glm::dvec3, 2> edge{patch.v[k], patch.v[(k + 1) % patch.n]};
             if (key(edge[1]) < key(edge[0])) std::swap(edge[0], edge[1]);
             edges.push_back(edge);
         }
@@ -317,7 +318,7 @@ const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(Elem
     for (std::vector<ElementId> stack{top}; !stack.empty();) {
         const HElement& e = h_[stack.back()];
         stack.pop_back();
-        for (const std::vector<LinkId>* ids : {&e.links, &e.outLinks})
+        for (const IdList* ids : {&e.links, &e.outLinks})
             for (LinkId id : *ids) {
                 const Link& l = links_[id];
                 const double p = l.live && !l.passive ? heapKey(l) : 0.0;

@@ -20,7 +20,7 @@ void unlinkSubtree(Hierarchy& h, LinkStore& links, Refiner& refiner, ElementId c
     std::vector<LinkId> doomed;
     // Every link is on its receiver's lists, active or passive.
     for (ElementId e = 0; e < h.size(); ++e)
-        for (const std::vector<LinkId>* list : {&h[e].links, &h[e].plinks})
+        for (const IdList* list : {&h[e].links, &h[e].plinks})
             for (LinkId id : *list) {
                 const Link& l = links[id];
                 if (doomedEnd(l.source) || doomedEnd(l.receiver))
@@ -54,7 +54,7 @@ void pruneSubdivision(Hierarchy& h, ElementId e) {
             return;
         }
     }
-    for (ElementId c : std::vector<ElementId>(h[e].children)) pruneSubdivision(h, c);
+    for (ElementId c : IdList(h[e].children)) pruneSubdivision(h, c);
 }
 
 // Step 2: the links at the former ancestors now stand for smaller clusters.

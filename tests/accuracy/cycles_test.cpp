@@ -176,13 +176,21 @@ void expectCameraLinesUp(const ReferenceCase& c) {
 
 // Solves with the default settings, renders through the scene camera and
 // compares with the reference. Prints the figures whether or not they pass.
+// The same solve keeps the scale issue's memory target: at most 64 bytes a
+// link or p-link, everything the solution holds included (these small
+// rooms, 25 to 40 links an H-element, are where the elements weigh most).
 void expectWithinTarget(const ReferenceCase& c) {
     SCOPED_TRACE(c.name);
     const test::TempDir dir;
-    const std::string image = (dir / "solved.pfm").string();
+    const std::string image = (dir / "solved.pfm").string(), report = (dir / "r.json").string();
     const auto r = runCli("solve " + shellQuote(scenePath(c)) + " --image " + shellQuote(image) + " --size " +
-                          sizeArgument(c));
+                          sizeArgument(c) + " --report " + shellQuote(report));
     ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json json = test::readJson(report);
+    const double links = json.at("links").get<double>() + json.at("passive_links").get<double>();
+    const double bytesPerLink = json.at("memory_bytes").at("total").get<double>() / links;
+    std::printf("[ memory ] %s: %.2f bytes per link\n", c.name.c_str(), bytesPerLink);
+    EXPECT_LE(bytesPerLink, 64.0);
     const test::BlockComparison m =
         test::compareBlocks(readPfm(image), readPfm(referencePath(c, ".pfm")), readPfm(referencePath(c, "-lights.pfm")));
     std::printf("[ accuracy ] %s: block RMS %.4f (target %.2f), mean ratio %.4f, %d blocks, %zu pixels\n",

@@ -124,7 +124,7 @@ TEST(Hierarchy, QuadraturePointsFollowThePatch) {
         for (ElementId e = 0; e < h.size(); ++e) {
             if (!h.isLive(e) || !h[e].isSurface()) continue;
             ++surfaces;
-            const SampleSet fresh = patchSamples(h[e].patch, 2);
+            const SampleSet fresh = patchSamples(h.patch(e), 2);
             const QuadraturePoints kept = h.quadrature(e);
             ASSERT_EQ(kept.size(), fresh.size()) << when << ", element " << e;
             // Kept in single precision (PackedQuadrature): within a float's

@@ -34,7 +34,7 @@ void expectSourceOrder(const Hierarchy& h, const LinkStore& links, std::size_t& 
         if (e == h.root() || h[e].parent != kNone) live.push_back(e);
     for (std::size_t i = 0; i < live.size(); i += std::max<std::size_t>(1, live.size() / 60)) sample.push_back(live[i]);
     for (ElementId r : live)
-        for (const std::vector<LinkId>* list : {&h[r].links, &h[r].plinks}) {
+        for (const IdList* list : {&h[r].links, &h[r].plinks}) {
             ASSERT_TRUE(std::is_sorted(list->begin(), list->end(), [&](LinkId a, LinkId b) {
                 return sourceIndex(h, links, a) < sourceIndex(h, links, b);
             })) << "element " << r;

@@ -84,7 +84,9 @@ TEST(ReceiverLight, LargeDimPolygonsAreRefinedForTheirOwnLight) {
     test::addQuadObject(s, "red-wall", red, {square(50, 3)});          // 9 m^2
     test::addQuadObject(s, "lamp", lamp, {square(60, 1)});
     Hierarchy h(s, 1.0);
-    const auto set = [&](std::uint32_t p, V b) { h[h.polygonElement(p)].radiosity = b + h[h.polygonElement(p)].emission; };
+    const auto set = [&](std::uint32_t p, V b) {
+        h[h.polygonElement(p)].radiosity = b + h.emission(h[h.polygonElement(p)]);
+    };
     set(0, V(1.0));
     set(1, V(0.02));
     set(2, V(0.02));

@@ -146,7 +146,8 @@ TEST(Refiner, AnEmitterStandingOnTheReceiverSplitsItBelowTheAreaThreshold) {
     const auto wouldSplitFloor = [](const Scene& scene) {
         Refining r(scene, 0.5);
         const ElementId panel = r.h.polygonElement(0);
-        r.h[panel].oracle = float(luminance(r.h[panel].emission));  // the radiosity refinement judges by
+        r.h[panel].oracle =
+            float(luminance(r.h.emission(r.h[panel])));  // the radiosity refinement judges by
         const Link link = r.refiner.compute(panel, r.h.polygonElement(1));
         EXPECT_GT(link.formFactor(), 0.0f) << scene.sourcePath;
         return r.refiner.wouldRefine(link);
@@ -171,7 +172,7 @@ TEST(Refiner, AnEmitterStandingOnTheReceiverSplitsItTwoLevelsBelowTheAreaThresho
     const Scene scene = panelOnFloor(0.0, 10.0);  // the hierarchy keeps a reference to it
     Refining r(scene, 0.5);
     const ElementId panel = r.h.polygonElement(0), floor = r.h.polygonElement(1);
-    r.h[panel].oracle = float(luminance(r.h[panel].emission));
+    r.h[panel].oracle = float(luminance(r.h.emission(r.h[panel])));
     EXPECT_TRUE(r.refiner.wouldRefine(r.refiner.compute(panel, floor)));
     r.h.subdivide(floor);
     ElementId lit = kNone;

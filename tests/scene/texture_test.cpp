@@ -85,12 +85,14 @@ TEST(Texture, ElementsReflectTheTexelsUnderThem) {
     const Scene s = loadGltf(texturedRectangle().writeEmbedded(dir).string());
     Hierarchy h(s, 1e-6);
     const ElementId top = h.polygonElement(0);
-    EXPECT_NEAR(h[top].reflectance.x, 0.4, 1e-12);  // the whole texture: its mean
+    // Elements keep their reflectance in single precision: within a float's step.
+    EXPECT_NEAR(h[top].reflectance.x, 0.4, 1e-7);  // the whole texture: its mean
     h.subdivide(top);
     ASSERT_EQ(h[top].children.size(), 4u);
     for (ElementId c : h[top].children) {
         const bool white = h[c].center.x < 1.0;
-        EXPECT_NEAR(h[c].reflectance.x, white ? 0.8 : 0.0, 1e-12) << "child at x = " << h[c].center.x;
+        EXPECT_NEAR(h[c].reflectance.x, white ? 0.8 : 0.0, 1e-7)
+            << "child at x = " << h[c].center.x;
     }
 }
 

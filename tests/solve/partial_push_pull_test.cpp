@@ -93,7 +93,8 @@ TEST(PartialPushPull, APushWholeStopsWhenTheClockPassesAndTheRestIsMadeLater) {
     const std::vector<V> expected = onTime.radiosity();
 
     late.lightTheWall();
-    const std::vector<ElementId> children = late.h[late.wall].children;
+    const std::vector<ElementId> children(late.h[late.wall].children.begin(),
+                                          late.h[late.wall].children.end());
     ASSERT_EQ(children.size(), 4u);
     const auto start = std::chrono::steady_clock::now();
     std::atomic<int> reads{0};
@@ -154,7 +155,9 @@ TEST(PartialPushPull, ManySmallElementsPushedWholeStopWhenTheClockPasses) {
     const std::vector<ElementId> visited = late.solver.partialPushPull({late.wall}, deadline);
     EXPECT_EQ(reads.load(), 2) << "the wall's reading, and one after kPushClockEvery elements";
     std::vector<ElementId> below;  // the wall's subtree, the wall left out
-    for (std::vector<ElementId> stack = late.h[late.wall].children; !stack.empty();) {
+    for (std::vector<ElementId> stack(late.h[late.wall].children.begin(),
+                                      late.h[late.wall].children.end());
+         !stack.empty();) {
         below.push_back(stack.back());
         stack.pop_back();
         stack.insert(stack.end(), late.h[below.back()].children.begin(), late.h[below.back()].children.end());
