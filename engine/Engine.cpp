@@ -218,10 +218,15 @@ struct Engine::State {
 
     // The lit mesh a frame ends with: the viewer draws it, so building it is
     // part of the frame's time. Valid until the solution changes again.
-    // On a deadline (the frame's, f.totalSeconds of it spent), polygons are
-    // meshed again only until the time the assembly needs is left; the
-    // others keep their last mesh for a later frame (FrameStats::unmeshed).
-    void buildMesh(FrameStats& f, std::optional<double> deadlineSeconds = std::nullopt) {
+    // On a deadline (the frame's, begun at frameStart), polygons are meshed
+    // again only until the time the assembly needs is left; the others keep
+    // their last mesh for a later frame (FrameStats::unmeshed). The frame's
+    // total is the wall clock from frameStart through the mesh: what no
+    // phase times (the live estimate of a deferred move, 1 to 12 ms on the
+    // building floor) is in it too.
+    void buildMesh(FrameStats& f, std::chrono::steady_clock::time_point frameStart,
+                   std::optional<double> deadlineSeconds = std::nullopt) {
+        f.totalSeconds = secondsSince(frameStart);
         const auto start = std::chrono::steady_clock::now();
         std::optional<std::chrono::steady_clock::time_point> stop;
         // The polygons whose leaves changed or moved are meshed anew, at ten
@@ -838,8 +843,7 @@ FrameStats Engine::setDynamicObject(const std::string& name, const UpdateSetting
     FrameStats f = s.updater.chooseObject(box, s.hierarchy.range(cluster), relinked, settings);
     f.reinsertion = r;
     f.updateSeconds += reinsertSeconds;
-    f.totalSeconds += reinsertSeconds;
-    s.buildMesh(f);
+    s.buildMesh(f, start);
     return f;
 }
 
@@ -897,6 +901,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
                                const UpdateSettings& settings, bool allowDeferral) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("moveObjects before solve()");
+    const auto frameStart = std::chrono::steady_clock::now();
     std::vector<std::pair<std::uint32_t, glm::dmat4>> objects, lights;
     for (const auto& [name, worldFromLocal] : moves) {
         for (const auto& [other, m] : moves)
@@ -1039,7 +1044,6 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         stats.caughtUp = catchingUp;
         stats.resumed = resumed;
         stats.moveSeconds = moveSeconds;
-        stats.totalSeconds += moveSeconds + choosingSeconds;
         stats.updateSeconds += choosingSeconds;
         // The estimate: what waits already, and the light the objects' own
         // links carry, in the share of the object's size it has moved (its
@@ -1055,7 +1059,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         const bool layoutBeyondReserve =
             settings.deadlineSeconds && s.meshParts.resizesWaited &&
             s.meshParts.relayoutSeconds > State::kMostOver * *settings.deadlineSeconds;
-        s.buildMesh(stats, settings.deadlineSeconds);  // not a frame of the budget's fit: its traversal began before
+        s.buildMesh(stats, frameStart, settings.deadlineSeconds);  // not a frame of the budget's fit: its traversal began before
         if ((catchingUp || resumed) && settings.deadlineSeconds && !layoutBeyondReserve) {
             const double frame = *settings.deadlineSeconds, raise = State::kOverRaise * frame;
             s.catchUpOver = std::clamp(s.catchUpOver + (stats.totalSeconds > frame ? raise : -raise / 9.0), 0.0,
@@ -1087,10 +1091,9 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
         s.countWaitingMoves(stats);
     }
     stats.moveSeconds = movedSeconds;
-    stats.totalSeconds += movedSeconds + choosingSeconds;
     stats.pending += s.lightLinks.pendingCount();
     stats.updateSeconds += choosingSeconds;
-    s.buildMesh(stats, settings.deadlineSeconds);
+    s.buildMesh(stats, frameStart, settings.deadlineSeconds);
     // Links the frame's budget left stale are caught up on first, as those
     // of a traversal over frames are: otherwise each frame's traversal
     // finds more than its budget updates, and they pile up (in `office` at
@@ -1112,6 +1115,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
 FrameStats Engine::refinePending(const UpdateSettings& settings) {
     State& s = *state_;
     if (!s.solved) throw std::logic_error("refinePending before solve()");
+    const auto frameStart = std::chrono::steady_clock::now();
     s.catchUpFirst = false;  // idle time catches up
     // A traversal a deadline stopped goes on first (on the deadline, at
     // least a run of its visits); once it ends, the links it found wait,
@@ -1122,7 +1126,7 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
         if (!f.traversing) s.finding.clear();
         s.countWaitingMoves(f);
         f.pending += s.lightLinks.pendingCount();
-        s.buildMesh(f, settings.deadlineSeconds);
+        s.buildMesh(f, frameStart, settings.deadlineSeconds);
         return f;
     }
     // A deferred move first: the objects stay where they are, and their
@@ -1142,7 +1146,6 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
     const double lightSeconds = secondsSince(start);
     FrameStats f = s.updater.refinePending(s.forUpdater(settings, lightSeconds));
     f.updateSeconds += lightSeconds;
-    f.totalSeconds += lightSeconds;
     f.pending += s.lightLinks.pendingCount();
     // Idle with nothing left to refine: the link lists give back the growth
     // slack the moves left them.
@@ -1150,7 +1153,7 @@ FrameStats Engine::refinePending(const UpdateSettings& settings) {
         s.hierarchy.compact(0.25);
         s.links.compact();
     }
-    s.buildMesh(f, settings.deadlineSeconds);
+    s.buildMesh(f, frameStart, settings.deadlineSeconds);
     return f;
 }
 
@@ -1329,9 +1332,8 @@ FrameStats Engine::editMaterials(const std::vector<MaterialEdit>& edits, const U
     FrameStats stats = s.updater.propagate(changed, inner, emissionOnly ? &emission : nullptr);
     s.updater.judgeAgain(inner, stats);
     stats.updateSeconds += lightSeconds;  // the light links made again
-    stats.totalSeconds += lightSeconds;
     stats.pending += s.lightLinks.pendingCount();
-    s.buildMesh(stats, settings.deadlineSeconds);
+    s.buildMesh(stats, start, settings.deadlineSeconds);
     return stats;
 }
 

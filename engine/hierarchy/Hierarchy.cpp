@@ -269,7 +269,16 @@ void Hierarchy::release(ElementId id) {
     elements_[id] = HElement{};
     bounds_[id] = ElementBounds{};
     free_.push_back(id);
+    logRelease(id);
+}
+
+void Hierarchy::logRelease(ElementId id) {
     ++releases_;
+    if (releaseLog_.size() == 2 * kReleaseLog) {
+        releaseLog_.erase(releaseLog_.begin(), releaseLog_.begin() + kReleaseLog);
+        releaseLogStart_ += kReleaseLog;
+    }
+    releaseLog_.push_back(id);
 }
 
 void Hierarchy::finishCluster(ElementId id, bool turned) {
@@ -517,7 +526,7 @@ void Hierarchy::removeChildren(ElementId id) {
         elements_[e] = HElement{};
         bounds_[e] = ElementBounds{};
         free_.push_back(e);
-        ++releases_;
+        logRelease(e);
     }
 }
 
@@ -601,6 +610,10 @@ void Hierarchy::compact(double slack) {
     shrink(elements_, 0);
     shrink(bounds_, 0);
     shrink(quadrature_, 0);
+    if (slack == 0.0) {  // after a solve: who reads the log next makes every value
+        releaseLog_ = {};
+        releaseLogStart_ = releases_;
+    }
     if (direct_.size() > elements_.size()) direct_.resize(elements_.size());
     shrink(direct_, 0);
     shrink(shapes_, 0);
@@ -616,7 +629,7 @@ void Hierarchy::compact(double slack) {
 std::size_t Hierarchy::memoryBytes() const {
     std::size_t bytes = elements_.memoryBytes() + bounds_.memoryBytes() + quadrature_.memoryBytes() +
                         direct_.memoryBytes() +
-                        free_.capacity() * sizeof(ElementId) +
+                        (free_.capacity() + releaseLog_.capacity()) * sizeof(ElementId) +
                         shapes_.capacity() * sizeof(ClusterShape) + freeShapes_.capacity() * sizeof(std::uint32_t);
     for (const ClusterShape& s : shapes_) bytes += s.heapBytes();
     for (std::size_t i = 0; i < elements_.size(); ++i) {

@@ -305,9 +305,21 @@ double LineSpaceUpdate::motionShare(const Aabb& from, const Aabb& to) {
 }
 
 const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(ElementId top) const {
-    // Freed elements (an id may be another's now) call for new sums.
+    // Freed elements (an id may be another's now) call for new sums: of
+    // the tops freed or holding a freed receiver (all when the log of
+    // freed ids no longer reaches back).
     if (carriedReleases_ != h_.releases()) {
-        carried_.clear();
+        if (const auto freed = h_.releasedSince(carriedReleases_)) {
+            std::vector<ElementId> ids(freed->begin(), freed->end());
+            std::sort(ids.begin(), ids.end());
+            const auto isFreed = [&](ElementId e) { return std::binary_search(ids.begin(), ids.end(), e); };
+            std::erase_if(carried_, [&](const auto& entry) {
+                return isFreed(entry.first) ||
+                       std::any_of(entry.second.begin(), entry.second.end(), [&](const auto& rp) { return isFreed(rp.first); });
+            });
+        } else {
+            carried_.clear();
+        }
         carriedReleases_ = h_.releases();
     }
     auto [it, made] = carried_.try_emplace(top);
@@ -535,10 +547,14 @@ void LineSpaceUpdate::clustersMoved(ElementId objectCluster) {
 }
 
 double LineSpaceUpdate::unsentPower() const {
-    // Freed elements (an id may be another's now) call for a new sum; an
+    // Freed elements (an id may be another's now) make their terms again
+    // (every term when the log of freed ids no longer reaches back); an
     // element with no active link leaving it has nothing to send.
     if (unsentReleases_ != h_.releases()) {
-        unsent_.forget();
+        if (const auto freed = h_.releasedSince(unsentReleases_))
+            unsent_.mayHaveChanged(*freed);
+        else
+            unsent_.forget();
         unsentReleases_ = h_.releases();
     }
     unsent_.mayHaveChanged(refiner_.takeSendersChanged());

@@ -187,6 +187,45 @@ TEST(Hierarchy, PolygonLeavesFollowSubdivisionAndRemoval) {
     expectCounts("removed");
 }
 
+// The log of freed ids: what keeps a value per element (the live estimate's
+// sums) makes it again for the ids freed since it last looked, or for all
+// when the log no longer reaches back that far (it keeps the last
+// kReleaseLog at least, and none after compact(0), the end of a solve).
+TEST(Hierarchy, FreedIdsAreLoggedForWhatKeepsAValuePerElement) {
+    const Scene scene = test::roomWithBlock();
+    Hierarchy h(scene, 1e-4);
+    const ElementId wall = h.polygonElement(0);
+    const std::uint64_t before = h.releases();
+    ASSERT_TRUE(h.releasedSince(before).has_value());
+    EXPECT_TRUE(h.releasedSince(before)->empty());
+    h.subdivide(wall);
+    h.subdivide(h[wall].children[1]);
+    std::vector<ElementId> expected(h[wall].children.begin(), h[wall].children.end());
+    for (ElementId c : h[h[wall].children[1]].children) expected.push_back(c);
+    h.removeChildren(wall);
+    EXPECT_EQ(h.releases(), before + expected.size());
+    const auto freed = h.releasedSince(before);
+    ASSERT_TRUE(freed.has_value());
+    std::vector<ElementId> got(freed->begin(), freed->end());
+    std::sort(got.begin(), got.end());
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(got, expected);
+    EXPECT_EQ(h.releasedSince(h.releases())->size(), 0u);
+    EXPECT_FALSE(h.releasedSince(h.releases() + 1).has_value()) << "a count from the future";
+    // Past the log's reach, an old count gets nothing: all is made again.
+    while (h.releases() < before + 3 * Hierarchy::kReleaseLog) {
+        h.subdivide(wall);
+        h.removeChildren(wall);
+    }
+    EXPECT_FALSE(h.releasedSince(before).has_value());
+    const std::uint64_t recent = h.releases() - Hierarchy::kReleaseLog;
+    ASSERT_TRUE(h.releasedSince(recent).has_value());
+    EXPECT_EQ(h.releasedSince(recent)->size(), Hierarchy::kReleaseLog);
+    h.compact(0.0);
+    EXPECT_FALSE(h.releasedSince(recent).has_value());
+    EXPECT_TRUE(h.releasedSince(h.releases()).has_value());
+}
+
 // The leaves of the polygons to be meshed anew (what a frame on a deadline
 // leaves the snapshot time for): a polygon counts its leaves when its
 // quadtree first changes, and three more per subdivision after; a polygon

@@ -414,6 +414,34 @@ TEST(StabilityControlledUpdate, MovesWhileTheTraversalGoesOnWaitAndCoalesce) {
     engines.expectTheSameSolution();
 }
 
+// A frame's total is the wall clock of the whole engine call, whatever no
+// phase times (the live estimate of a deferred move took 1 to 12 ms of the
+// building floor's frames that the total left out), and holds the phases
+// it lists. Frames on a short deadline go through every kind of frame:
+// traversals cut and resumed, deferred moves, catching up, idle ones.
+TEST(StabilityControlledUpdate, AFrameTotalIsTheWholeCall) {
+    Engine engine(roomWithBlock(), coarse());
+    engine.solve();
+    const auto check = [](const FrameStats& f, double wall, int k) {
+        EXPECT_LE(f.totalSeconds, wall + 1e-6) << "frame " << k;
+        EXPECT_GE(f.totalSeconds, wall - (1e-3 + 0.02 * wall)) << "frame " << k;
+        EXPECT_LE(f.traversalSeconds + f.updateSeconds + f.pushPullSeconds + f.moveSeconds + f.snapshotSeconds,
+                  f.totalSeconds * (1.0 + 1e-9) + 1e-9)
+            << "frame " << k;
+    };
+    for (int k = 1; k <= 30; ++k) {
+        const double x = 0.4 * k / 30.0;
+        const auto start = std::chrono::steady_clock::now();
+        const FrameStats f = engine.moveDynamicObject(translation(V(x, 0.0, x / 2.0)), withDeadline(0.002));
+        check(f, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), k);
+    }
+    for (int k = 31; k <= 40; ++k) {
+        const auto start = std::chrono::steady_clock::now();
+        const FrameStats f = engine.refinePending(withDeadline(0.002));
+        check(f, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), k);
+    }
+}
+
 // A traversal stopped by one frame's deadline and ended in the next, which
 // has the time: everything it found waits, stale, behind what earlier frames
 // left, and the frame catches up on it on the clock (here all of it). The
