@@ -270,11 +270,13 @@ struct Engine::State {
         // 150 ms, more than a frame at 30 fps: left in full, the frames that
         // owed one did nothing else). Meshing anew the polygons whose leaves
         // change or move is counted as the frame goes (Hierarchy::
-        // reshapedLeaves), at its own rate.
+        // reshapedLeaves), at its own rate. The live estimate comes after
+        // the work too (LineSpaceUpdate::estimateSeconds).
         const auto [base, perLeaf] = meshCost.model();
         double owed = meshParts.resizesWaited ? meshParts.relayoutSeconds : 0.0;
         if (settings.deadlineSeconds) owed = std::min(owed, kMostOwed * *settings.deadlineSeconds);
-        updater.setFrameTail({base + meshCost.spread() + owed, perLeaf, meshParts.reshapeSecondsPerLeaf});
+        updater.setFrameTail(
+            {base + meshCost.spread() + owed + updater.estimateSeconds(), perLeaf, meshParts.reshapeSecondsPerLeaf});
         UpdateSettings u = settings;
         if (u.deadlineSeconds) u.deadlineSeconds = *u.deadlineSeconds - elapsed;
         return u;

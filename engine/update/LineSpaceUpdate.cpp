@@ -346,6 +346,13 @@ const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(Elem
 }
 
 double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, double>>& deferred) const {
+    const auto start = std::chrono::steady_clock::now();
+    const double error = estimateNow(deferred);
+    estimateSeconds_ = 0.75 * estimateSeconds_ + 0.25 * secondsSince(start);
+    return error;
+}
+
+double LineSpaceUpdate::estimateNow(const std::vector<std::pair<ElementId, double>>& deferred) const {
     // The power each receiver could still change by: its stale and pending
     // active links (a p-link's transfer is carried by its children), and
     // the links with an end in a deferred object's subtree, in the share of
