@@ -135,7 +135,9 @@ FrameStats LineSpaceUpdate::goOn(FrameStats stats, const UpdateSettings& setting
     if (traversing_) {
         // What else is dirty (a moved light's direct light) is pushed as the
         // clock allows; the rest waits, counted in the estimate.
+        const auto pushStart = std::chrono::steady_clock::now();
         touch(pushPull(stats, true));
+        stats.pushPullSeconds = secondsSince(pushStart);
         finish(stats, start, false);
         return stats;
     }
