@@ -361,6 +361,7 @@ struct Engine::State {
                                 std::min(1.0, LineSpaceUpdate::motionShare(box, scene.objectBounds(object))));
         f.deferred = since.size();
         f.estimatedError = updater.estimatedError(shares);
+        f.estimateSeconds += updater.lastEstimateSeconds();
     }
 };
 

@@ -56,6 +56,7 @@ Report frameReport(int f, const FrameRecord& r, const Scene& scene) {
           {"push_pull", st.pushPullSeconds},
           {"bounces", st.bounceSeconds},
           {"move", st.moveSeconds},
+          {"estimate", st.estimateSeconds},
           {"snapshot", st.snapshotSeconds},
           {"total", st.totalSeconds}}},
         {"budget", st.budget == kUnlimited ? Report(nullptr) : Report(st.budget)},

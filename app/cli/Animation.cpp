@@ -56,6 +56,7 @@ void addFrame(FrameStats& into, const FrameStats& more) {
     into.pushPullSeconds += more.pushPullSeconds;
     into.bounceSeconds += more.bounceSeconds;
     into.moveSeconds += more.moveSeconds;
+    into.estimateSeconds += more.estimateSeconds;
     into.snapshotSeconds += more.snapshotSeconds;
     into.totalSeconds += more.totalSeconds;
     into.spent += more.spent;

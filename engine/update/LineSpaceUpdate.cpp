@@ -289,7 +289,10 @@ void LineSpaceUpdate::finish(FrameStats& stats, std::chrono::steady_clock::time_
     std::vector<ElementId> unpushed = solver_.unpushed();
     std::sort(unpushed.begin(), unpushed.end());
     std::erase_if(lightChanges_, [&](const auto& c) { return !std::binary_search(unpushed.begin(), unpushed.end(), c.first); });
-    if (estimate) stats.estimatedError = estimatedError();
+    if (estimate) {
+        stats.estimatedError = estimatedError();
+        stats.estimateSeconds = lastEstimateSeconds_;
+    }
     stats.totalSeconds = secondsSince(start);
 }
 
@@ -350,7 +353,8 @@ const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(Elem
 double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, double>>& deferred) const {
     const auto start = std::chrono::steady_clock::now();
     const double error = estimateNow(deferred);
-    estimateSeconds_ = 0.75 * estimateSeconds_ + 0.25 * secondsSince(start);
+    lastEstimateSeconds_ = secondsSince(start);
+    estimateSeconds_ = 0.75 * estimateSeconds_ + 0.25 * lastEstimateSeconds_;
     return error;
 }
 

@@ -182,6 +182,8 @@ public:
     // tail, as the mesh is (on the building floor 1 to 12 ms: its sums over
     // the unsent elements and over the links a moved object carries).
     double estimateSeconds() const { return estimateSeconds_; }
+    // What the last estimate took (FrameStats::estimateSeconds).
+    double lastEstimateSeconds() const { return lastEstimateSeconds_; }
     // What waits for later frames and idle time: FrameStats::pending, stale
     // and unsent as they stand.
     void countWaiting(FrameStats& stats) const;
@@ -477,7 +479,7 @@ private:
     // push-pull and the bounces of what they changed.
     std::optional<std::chrono::steady_clock::time_point> deadline_, linkDeadline_;
     FrameTail tail_;
-    mutable double estimateSeconds_ = 0.0;  // estimateSeconds
+    mutable double estimateSeconds_ = 0.0, lastEstimateSeconds_ = 0.0;  // estimateSeconds, lastEstimateSeconds
     double estimateNow(const std::vector<std::pair<ElementId, double>>& deferred) const;  // estimatedError, untimed
     // The tail of the frame as it stands: the mesh's for `changedLeaves`,
     // and the meshing anew of the polygons reshaped so far.

@@ -106,9 +106,12 @@ struct FrameStats {
     // Before those: the object's polygons, H-elements, cluster sample points
     // and ray-casting layer moved, the obstacles found (Engine).
     double moveSeconds = 0.0;
-    // After them: the lit mesh the viewer draws (Engine::snapshot hands it out).
+    // After them: the live estimate (estimatedError) and the lit mesh the
+    // viewer draws (Engine::snapshot hands it out).
+    double estimateSeconds = 0.0;
     double snapshotSeconds = 0.0;
-    double totalSeconds = 0.0;  // all of the frame, the snapshot included
+    // All of the frame: the wall clock of the engine call, the snapshot included.
+    double totalSeconds = 0.0;
     std::size_t shaftTests = 0;
     std::size_t candidates = 0;
     std::size_t linksUpdated = 0;
