@@ -533,7 +533,7 @@ void LineSpaceUpdate::prepare() {
     powerScratch_.resize(h_.size(), 0.0);
     sending_.resize(h_.size(), 0);
     unsent_.cover(h_.size());
-    transferBlock_ = std::clamp<std::size_t>(links_.liveCount() / 32, 1024, 16384);
+    transferBlock_ = std::clamp<std::size_t>(links_.liveCount() / 64, 1024, 16384);
     transfers_.assign(transferBlock_, Transfer{});  // its pages written now
     transfers_.clear();
     refiner_.recordSendersChanged();  // for the sum of what the unsent have to send

@@ -404,8 +404,10 @@ private:
     void applyTransfers(const std::vector<Transfer>& transfers, double threshold);
     // The buffer transfers are found in, made with the update's marks
     // (prepare) and kept: a block of transferBlock_ transfers, unless one
-    // sender alone has more links. A thirty-second of the links, from 1,024
-    // to 16,384 transfers (512 KiB): at most a byte a link.
+    // sender alone has more links. A sixty-fourth of the links, from 1,024
+    // to 16,384 transfers (512 KiB): at most half a byte a link (a
+    // thirty-second was half a byte a link more in small rooms, which
+    // stand near the 64 bytes a link the scale issue allows).
     std::vector<Transfer> transfers_;
     std::size_t transferBlock_ = 1024;
 
