@@ -24,7 +24,7 @@ enum class ElementKind : std::uint8_t { Cluster, Surface };
 // index range and the box of a link's ends. They live apart from the rest of
 // an H-element (Hierarchy::range, Hierarchy::box), one cache line each, so
 // that a traversal over hundreds of thousands of links does not pull in the
-// 600 bytes of geometry and solution state of every end it looks at.
+// 320 bytes of geometry and solution state of every end it looks at.
 struct alignas(64) ElementBounds {
     IndexRange range;
     Aabb box;

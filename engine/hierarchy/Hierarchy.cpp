@@ -543,7 +543,9 @@ void Hierarchy::updateGeometry(ElementId id, bool turned) {
     if (e.isSurface()) {
         const Polygon& p = scene_.polygons[e.polygon];
         const PatchGeometry patch = this->patch(id);
-        polygonNormals_[e.polygon] = p.normal();
+        // Once per polygon, at its quadtree's root: a move reaches every
+        // root, and a subdivision (from below the root) turns nothing.
+        if (polygonElements_[e.polygon] == id) polygonNormals_[e.polygon] = p.normal();
         e.area = polygonArea(patch);
         Aabb& box = bounds_[id].box;
         box = Aabb{};
