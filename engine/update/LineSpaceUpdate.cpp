@@ -10,6 +10,7 @@
 #include <string>
 #include <tuple>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "hierarchy/ClusterShape.h"
@@ -329,21 +330,33 @@ const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(Elem
     }
     auto [it, made] = carried_.try_emplace(top);
     if (!made) return it->second;
-    std::vector<double>& power = carriedScratch_;
-    if (power.size() < h_.size()) power.resize(h_.size(), 0.0);
-    std::vector<ElementId> receivers;
+    // The subtree's links first (a walk of its id lists), then each one's
+    // potential transfer on all cores, summed per receiver in the walk's
+    // order: one by one, a chair's 98,000 links and p-links on the building
+    // floor took 4.5 ms (a sixth of them reach a cluster, whose projected
+    // area toward the source is a sum over its facets).
+    std::vector<LinkId> ids;
     for (std::vector<ElementId> stack{top}; !stack.empty();) {
         const HElement& e = h_[stack.back()];
         stack.pop_back();
-        for (const IdList* ids : {&e.links, &e.outLinks})
-            for (LinkId id : *ids) {
-                const Link& l = links_[id];
-                const double p = l.live && !l.passive ? heapKey(l) : 0.0;
-                if (!(p > 0.0)) continue;
-                if (power[l.receiver] == 0.0) receivers.push_back(l.receiver);
-                power[l.receiver] += p;
-            }
+        for (const IdList* list : {&e.links, &e.outLinks}) ids.insert(ids.end(), list->begin(), list->end());
         for (ElementId c : e.children) stack.push_back(c);
+    }
+    std::vector<double> transfer(ids.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ids.size(), 1024), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const Link& l = links_[ids[i]];
+            transfer[i] = l.live && !l.passive ? heapKey(l) : 0.0;
+        }
+    });
+    std::vector<double>& power = carriedScratch_;
+    if (power.size() < h_.size()) power.resize(h_.size(), 0.0);
+    std::vector<ElementId> receivers;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        if (!(transfer[i] > 0.0)) continue;
+        const ElementId r = links_[ids[i]].receiver;
+        if (power[r] == 0.0) receivers.push_back(r);
+        power[r] += transfer[i];
     }
     it->second.reserve(receivers.size());
     for (ElementId r : receivers) it->second.emplace_back(r, std::exchange(power[r], 0.0));
