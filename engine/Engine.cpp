@@ -9,6 +9,8 @@
 #include <map>
 #include <numeric>
 #include <stdexcept>
+#include <set>
+#include <span>
 #include <sstream>
 
 #include "geometry/RayCaster.h"
@@ -260,7 +262,11 @@ struct Engine::State {
     }
     // The settings the updater gets: a deadline is for the whole frame, of
     // which `elapsed` seconds are gone and the lit mesh is still to come.
-    UpdateSettings forUpdater(const UpdateSettings& settings, double elapsed) {
+    // `carrying`: the clusters of the objects whose links may wait at the end
+    // of the frame (the estimate sums the light they carry); `traversal`:
+    // the frame begins a traversal, which makes those sums again.
+    UpdateSettings forUpdater(const UpdateSettings& settings, double elapsed,
+                              std::span<const ElementId> carrying = {}, bool traversal = false) {
         // The mesh's time varies with more than the leaves (how many
         // polygons they lie in, how much smoothing): its fixed part is taken
         // at the 80th percentile of the frames, not their mean. A new layout
@@ -276,7 +282,8 @@ struct Engine::State {
         double owed = meshParts.resizesWaited ? meshParts.relayoutSeconds : 0.0;
         if (settings.deadlineSeconds) owed = std::min(owed, kMostOwed * *settings.deadlineSeconds);
         updater.setFrameTail(
-            {base + meshCost.spread() + owed + updater.estimateSeconds(), perLeaf, meshParts.reshapeSecondsPerLeaf});
+            {base + meshCost.spread() + owed + updater.estimateSeconds(carrying, traversal), perLeaf,
+             meshParts.reshapeSecondsPerLeaf});
         UpdateSettings u = settings;
         if (u.deadlineSeconds) u.deadlineSeconds = *u.deadlineSeconds - elapsed;
         return u;
@@ -351,6 +358,17 @@ struct Engine::State {
     // A frame in which objects' links wait for their moves (being found, or
     // deferred): how many, and the estimate with their links in the share
     // of its size each object has moved since they were last updated.
+    // The clusters of these objects and of those whose moves wait (being
+    // found, or deferred).
+    std::vector<ElementId> waitingClusters(std::span<const std::pair<std::uint32_t, glm::dmat4>> moving) const {
+        std::set<std::uint32_t> objects;
+        for (const auto& [object, world] : moving) objects.insert(object);
+        for (const auto& [object, d] : finding) objects.insert(object);
+        for (const auto& [object, d] : deferred) objects.insert(object);
+        std::vector<ElementId> clusters;
+        for (std::uint32_t object : objects) clusters.push_back(hierarchy.objectCluster(object));
+        return clusters;
+    }
     void countWaitingMoves(FrameStats& f) {
         std::map<std::uint32_t, Aabb> since;
         for (const auto& [object, d] : finding) since.emplace(object, d.box);
@@ -947,7 +965,7 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
                             settings.deadlineSeconds && choosingSeconds == 0.0;
     FrameStats caught;
     if (catchingUp) {
-        UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds + s.catchUpOver);
+        UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds + s.catchUpOver, s.waitingClusters(objects));
         u.budget.reset();
         caught = s.updater.refinePending(u, false);
         s.catchUpFirst = caught.stale > 0 && caught.spent > 0;
@@ -962,7 +980,8 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     // on.
     const bool resumed = !s.finding.empty();
     if (resumed) {
-        UpdateSettings u = s.forUpdater(settings, s.lastMoveSeconds + choosingSeconds + s.catchUpOver);
+        UpdateSettings u =
+            s.forUpdater(settings, s.lastMoveSeconds + choosingSeconds + s.catchUpOver, s.waitingClusters(objects));
         if (settings.deadlineSeconds) u.budget.reset();  // as in a catch-up: the deadline governs
         caught = s.updater.resume(u);
         if (!caught.traversing) {
@@ -1086,9 +1105,10 @@ FrameStats Engine::moveObjects(const std::vector<std::pair<std::string, glm::dma
     const auto exposureStart = std::chrono::steady_clock::now();
     s.measureExposureAround(exposureMotions);
     const double movedSeconds = moveSeconds + secondsSince(exposureStart);  // the move's part of the frame
+    const std::vector<ElementId> carrying = s.waitingClusters(objects);  // if the traversal stops
     s.deferred.clear();
     s.updater.setObstacles(std::move(obstacles));
-    FrameStats stats = s.updater.update(motions, s.forUpdater(settings, movedSeconds + choosingSeconds));
+    FrameStats stats = s.updater.update(motions, s.forUpdater(settings, movedSeconds + choosingSeconds, carrying, true));
     if (stats.traversing) {
         s.finding = std::move(from);
         s.countWaitingMoves(stats);

@@ -310,26 +310,30 @@ double LineSpaceUpdate::motionShare(const Aabb& from, const Aabb& to) {
     return std::max(glm::length(to.lo - from.lo), glm::length(to.hi - from.hi)) / size;
 }
 
-const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(ElementId top) const {
+void LineSpaceUpdate::dropCarriedOfFreed() const {
     // Freed elements (an id may be another's now) call for new sums: of
     // the tops freed or holding a freed receiver (all when the log of
     // freed ids no longer reaches back).
-    if (carriedReleases_ != h_.releases()) {
-        if (const auto freed = h_.releasedSince(carriedReleases_)) {
-            std::vector<ElementId> ids(freed->begin(), freed->end());
-            std::sort(ids.begin(), ids.end());
-            const auto isFreed = [&](ElementId e) { return std::binary_search(ids.begin(), ids.end(), e); };
-            std::erase_if(carried_, [&](const auto& entry) {
-                return isFreed(entry.first) ||
-                       std::any_of(entry.second.begin(), entry.second.end(), [&](const auto& rp) { return isFreed(rp.first); });
-            });
-        } else {
-            carried_.clear();
-        }
-        carriedReleases_ = h_.releases();
+    if (carriedReleases_ == h_.releases()) return;
+    if (const auto freed = h_.releasedSince(carriedReleases_)) {
+        std::vector<ElementId> ids(freed->begin(), freed->end());
+        std::sort(ids.begin(), ids.end());
+        const auto isFreed = [&](ElementId e) { return std::binary_search(ids.begin(), ids.end(), e); };
+        std::erase_if(carried_, [&](const auto& entry) {
+            return isFreed(entry.first) ||
+                   std::any_of(entry.second.begin(), entry.second.end(), [&](const auto& rp) { return isFreed(rp.first); });
+        });
+    } else {
+        carried_.clear();
     }
+    carriedReleases_ = h_.releases();
+}
+
+const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(ElementId top) const {
+    dropCarriedOfFreed();
     auto [it, made] = carried_.try_emplace(top);
     if (!made) return it->second;
+    const auto start = std::chrono::steady_clock::now();
     // The subtree's links first (a walk of its id lists), then each one's
     // potential transfer on all cores, summed per receiver in the walk's
     // order: one by one, a chair's 98,000 links and p-links on the building
@@ -360,14 +364,42 @@ const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(Elem
     }
     it->second.reserve(receivers.size());
     for (ElementId r : receivers) it->second.emplace_back(r, std::exchange(power[r], 0.0));
+    const double seconds = secondsSince(start);
+    carriedSeconds_ += seconds;
+    if (!ids.empty()) carriedSecondsPerLink_ = seconds / double(ids.size());
     return it->second;
+}
+
+std::size_t LineSpaceUpdate::linksCarriedBy(ElementId top) const {
+    std::size_t links = 0;
+    for (std::vector<ElementId> stack{top}; !stack.empty();) {
+        const HElement& e = h_[stack.back()];
+        stack.pop_back();
+        links += e.links.size() + e.outLinks.size();
+        stack.insert(stack.end(), e.children.begin(), e.children.end());
+    }
+    return links;
+}
+
+double LineSpaceUpdate::estimateSeconds(std::span<const ElementId> carrying, bool traversal) const {
+    // Before any were made, at a bounce's rate per link (of a sweep of the
+    // solve, before a bounce was measured): both read a link and its ends.
+    const double perLink = carriedSecondsPerLink_ > 0.0 ? carriedSecondsPerLink_ : bounceSecondsPerLink_;
+    double seconds = estimateSeconds_;
+    if (!traversal) dropCarriedOfFreed();  // a traversal drops them all
+    for (ElementId top : carrying)
+        if (traversal || !carried_.count(top)) seconds += perLink * double(linksCarriedBy(top));
+    return seconds;
 }
 
 double LineSpaceUpdate::estimatedError(const std::vector<std::pair<ElementId, double>>& deferred) const {
     const auto start = std::chrono::steady_clock::now();
+    carriedSeconds_ = 0.0;
     const double error = estimateNow(deferred);
     lastEstimateSeconds_ = secondsSince(start);
-    estimateSeconds_ = 0.75 * estimateSeconds_ + 0.25 * lastEstimateSeconds_;
+    // The mean leaves out the sums over the links objects carry, which only
+    // some frames make (estimateSeconds counts them where they are made).
+    estimateSeconds_ = 0.75 * estimateSeconds_ + 0.25 * std::max(0.0, lastEstimateSeconds_ - carriedSeconds_);
     return error;
 }
 
