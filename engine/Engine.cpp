@@ -150,7 +150,8 @@ struct Engine::State {
                     objectMinAreas(scene, settings, scales)),
           refiner(hierarchy, links, rays,
                   RefineSettings{settings.epsilon, scale * emittedPower(scene), settings.samplesPerElement,
-                                 settings.maxMemoryBytes > 0 ? settings.maxMemoryBytes : defaultMemoryLimit()}),
+                                 settings.maxMemoryBytes > 0 ? settings.maxMemoryBytes : defaultMemoryLimit(),
+                                 LineSpaceUpdate::memoryBeside()}),
           solver(hierarchy, links),
           updater(hierarchy, links, refiner, solver, emittedPower(scene) / scene.area()),
           lightLinks(scene, hierarchy, rays) {}

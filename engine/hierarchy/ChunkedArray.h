@@ -22,6 +22,7 @@ template <class T, unsigned Shift>
 class ChunkedArray {
 public:
     static constexpr std::size_t kChunk = std::size_t(1) << Shift;
+    static constexpr std::size_t kChunkBytes = kChunk * sizeof(T);
 
     T& operator[](std::size_t i) { return (*chunks_[i >> Shift])[i & kMask]; }
     const T& operator[](std::size_t i) const { return (*chunks_[i >> Shift])[i & kMask]; }

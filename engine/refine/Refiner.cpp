@@ -634,8 +634,9 @@ double Refiner::unrefinedPower() const {
 }
 
 std::size_t Refiner::memoryInUse() const {
-    return links_.liveCount() * (sizeof(Link) + 3 * sizeof(LinkId)) +
-           h_.liveCount() * h_.bytesPerElement();
+    const RefineSettings::Beside& b = settings_.beside;
+    return b.fixed + links_.liveCount() * (sizeof(Link) + 3 * sizeof(LinkId) + b.perLink) +
+           h_.liveCount() * (h_.bytesPerElement() + b.perElement);
 }
 
 std::size_t Refiner::refineAll(const WaveReport& onWave) {
@@ -657,7 +658,8 @@ std::size_t Refiner::refineAll(std::vector<LinkId> wave, const WaveReport& onWav
         if (batch.empty()) break;
         // Each refinement makes a few links and, for a surface, four elements.
         const std::size_t growth =
-            batch.size() * (4 * (sizeof(Link) + 3 * sizeof(LinkId)) + 4 * h_.bytesPerElement());
+            batch.size() * (4 * (sizeof(Link) + 3 * sizeof(LinkId) + settings_.beside.perLink) +
+                            4 * (h_.bytesPerElement() + settings_.beside.perElement));
         if (memoryInUse() + growth > settings_.maxMemoryBytes) {
             capReached_ = true;
             break;

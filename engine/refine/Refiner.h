@@ -28,6 +28,12 @@ struct RefineSettings {
     int samplesPerElement = 4;
     // Refinement stops before links and elements would take more bytes.
     std::size_t maxMemoryBytes = std::size_t(4) << 30;
+    // What is kept beside them and counted against the same limit (the
+    // update's marks and sums per element and per link, in chunks of a
+    // fixed size): a tiny limit then holds for the whole engine.
+    struct Beside {
+        std::size_t fixed = 0, perElement = 0, perLink = 0;
+    } beside;
 };
 
 class Refiner {

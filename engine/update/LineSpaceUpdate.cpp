@@ -578,10 +578,24 @@ void LineSpaceUpdate::prepare() {
     powerScratch_.resize(h_.size(), 0.0);
     sending_.resize(h_.size(), 0);
     unsent_.cover(h_.size());
-    transferBlock_ = std::clamp<std::size_t>(links_.liveCount() / 64, 1024, 16384);
+    transferBlock_ = std::clamp<std::size_t>(links_.liveCount() / kLinksPerTransfer, kLeastTransfers, kMostTransfers);
     transfers_.assign(transferBlock_, Transfer{});  // its pages written now
     transfers_.clear();
     refiner_.recordSendersChanged();  // for the sum of what the unsent have to send
+}
+
+RefineSettings::Beside LineSpaceUpdate::memoryBeside() {
+    // A chunk of each per-element and per-link array, and the bounce's
+    // transfer buffer at its least; per element its marks and sums (the
+    // sums of what a deferred object carries included); per link its two
+    // marks, rounded up to a byte, and its share of the transfer buffer.
+    RefineSettings::Beside b;
+    b.fixed = decltype(isTouched_)::kChunkBytes + decltype(waitingChange_)::kChunkBytes +
+              decltype(powerScratch_)::kChunkBytes + decltype(sending_)::kChunkBytes + UnsentSet::kFixedBytes +
+              2 * LinkBits::kChunkBytes + kLeastTransfers * sizeof(Transfer);
+    b.perElement = sizeof(char) + 2 * sizeof(double) + sizeof(char) + UnsentSet::kBytesPerElement + sizeof(double);
+    b.perLink = 1 + (sizeof(Transfer) + kLinksPerTransfer - 1) / kLinksPerTransfer;
+    return b;
 }
 
 std::size_t LineSpaceUpdate::memoryBytes() const {

@@ -158,6 +158,9 @@ public:
     // What the update keeps beside the hierarchy and the links: its marks
     // and sums per element, and per link slot (the stamps and stale marks).
     std::size_t memoryBytes() const;
+    // What that takes, for refinement to leave it room under the memory
+    // limit: whatever the scene, and per element and link.
+    static RefineSettings::Beside memoryBeside();
     // What a further bounce (per link leaving its senders), and the push of
     // the receivers waiting for one, are expected to cost before one was
     // measured: a sweep of the solve, `seconds` over `links` active links.
@@ -413,8 +416,9 @@ private:
     // to 16,384 transfers (512 KiB): at most half a byte a link (a
     // thirty-second was half a byte a link more in small rooms, which
     // stand near the 64 bytes a link the scale issue allows).
+    static constexpr std::size_t kLinksPerTransfer = 64, kLeastTransfers = 1024, kMostTransfers = 16384;
     std::vector<Transfer> transfers_;
-    std::size_t transferBlock_ = 1024;
+    std::size_t transferBlock_ = kLeastTransfers;
 
     // The last emission edit's light (propagate), while nothing but
     // emission changes: a move or a change of reflectance drops it.

@@ -12,6 +12,8 @@
 namespace rad {
 
 class LinkBits {
+    using Words = ChunkedArray<std::uint64_t, 13>;  // 8,192 words: 524,288 links a chunk
+
 public:
     // Room for `slots` link slots; those added are clear.
     void cover(std::size_t slots) { words_.resize((slots + 63) / 64, 0); }
@@ -25,11 +27,12 @@ public:
     bool testConcurrently(LinkId id) { return word(id).load(std::memory_order_relaxed) & bit(id); }
     bool setConcurrently(LinkId id) { return !(word(id).fetch_or(bit(id), std::memory_order_relaxed) & bit(id)); }
     std::size_t memoryBytes() const { return words_.memoryBytes(); }
+    static constexpr std::size_t kChunkBytes = Words::kChunkBytes;
 
 private:
     static std::uint64_t bit(LinkId id) { return std::uint64_t(1) << (id % 64); }
     std::atomic_ref<std::uint64_t> word(LinkId id) { return std::atomic_ref<std::uint64_t>(words_[id / 64]); }
-    ChunkedArray<std::uint64_t, 13> words_;  // 8,192 words: 524,288 links a chunk
+    Words words_;
 };
 
 }  // namespace rad

@@ -22,6 +22,9 @@
 namespace rad {
 
 class UnsentSet {
+    using Terms = ChunkedArray<double, 12>;
+    using States = ChunkedArray<std::uint8_t, 14>;
+
   public:
     bool contains(ElementId e) const { return e < state_.size() && (state_[e] & kMember); }
     // Room for the elements with ids under n, made now rather than by the
@@ -54,6 +57,10 @@ class UnsentSet {
     using Term = std::function<double(ElementId)>;
     double sum(const Term& term);
 
+    // What it keeps whatever its size (a chunk of each array), and per element.
+    static constexpr std::size_t kFixedBytes = Terms::kChunkBytes + States::kChunkBytes;
+    static constexpr std::size_t kBytesPerElement = sizeof(double) + sizeof(std::uint8_t);
+
     std::size_t memoryBytes() const {
         return term_.memoryBytes() + state_.memoryBytes() +
                (members_.capacity() + recount_.capacity()) * sizeof(ElementId);
@@ -64,8 +71,8 @@ class UnsentSet {
     // in cache where the terms (eight bytes) would not.
     static constexpr std::uint8_t kMember = 1, kQueued = 2;  // kQueued: on recount_
     std::vector<ElementId> members_;
-    ChunkedArray<double, 12> term_;         // per member: its term in sum_
-    ChunkedArray<std::uint8_t, 14> state_;  // per element: kMember | kQueued
+    Terms term_;    // per member: its term in sum_
+    States state_;  // per element: kMember | kQueued
     std::vector<ElementId> recount_;        // members whose terms are made again at the next sum
     double sum_ = 0.0;
     bool known_ = false;
