@@ -199,10 +199,11 @@ int animate(const AnimateSettings& settings) {
                 if (st.traversing) move += ", traversal goes on in the next frame";
                 if (st.foundOnly) move += ", found only (its links wait for the next frame)";
                 if (st.deferred) move += ", links of " + std::to_string(st.deferred) + " moved object(s) wait";
-                std::printf("frame %d: %.3f s (traversal %.3f, update %.3f, push-pull %.3f, snapshot %.3f), "
-                            "%zu candidates, %zu refined%s\n",
+                std::printf("frame %d: %.3f s (traversal %.3f, update %.3f, push-pull %.3f, move %.3f, estimate %.3f, "
+                            "snapshot %.3f), %zu candidates, %zu refined%s\n",
                             f, st.totalSeconds, st.traversalSeconds, st.updateSeconds, st.pushPullSeconds,
-                            st.snapshotSeconds, st.candidates, st.refined, move.c_str());
+                            st.moveSeconds, st.estimateSeconds, st.snapshotSeconds, st.candidates, st.refined,
+                            move.c_str());
             }
             if (!s.images) return;
             char name[32];

@@ -44,6 +44,13 @@ TEST(CliAnimate, ReportsEveryFrameAndMatchesAFullSolve) {
         }
         // The bounces are a part of the push-pull phase.
         EXPECT_LE(jsonAt(frame, "/seconds/bounces").get<double>(), jsonAt(frame, "/seconds/push_pull").get<double>());
+        // Its line on stdout names the report's phases.
+        const std::string line = "frame " + std::to_string(f) + ": ";
+        const std::size_t at = r.output.find(line);
+        ASSERT_NE(at, std::string::npos) << r.output;
+        const std::string printed = r.output.substr(at, r.output.find('\n', at) - at);
+        for (const char* phase : {"traversal ", "update ", "push-pull ", "move ", "estimate ", "snapshot "})
+            EXPECT_NE(printed.find(phase), std::string::npos) << phase << " in " << printed;
         for (const char* key : {"/shaft_tests", "/candidates", "/links_updated", "/reinstated", "/refined",
                                 "/changed_elements", "/changed_leaves", "/links", "/elements", "/spent", "/pending"}) {
             EXPECT_TRUE(jsonAt(frame, key).is_number_integer()) << key << " frame " << f;
