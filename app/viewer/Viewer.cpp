@@ -363,11 +363,10 @@ int runViewer(const ViewerOptions& options) {
             // that shows nine in ten of its vertices under white.
             if (solved && !exposureChosen && snap->mesh) {
                 exposureChosen = true;
-                std::vector<float> peaks(snap->mesh->colors.size());
-                for (std::size_t i = 0; i < peaks.size(); ++i) {
-                    const glm::vec3& c = snap->mesh->colors[i];
-                    peaks[i] = std::max({c.r, c.g, c.b});
-                }
+                // The vertices drawn (not the room the mesh's slots keep to grow in).
+                const std::vector<glm::vec3> colors = compactMesh(*snap->mesh).colors;
+                std::vector<float> peaks(colors.size());
+                for (std::size_t i = 0; i < peaks.size(); ++i) peaks[i] = std::max({colors[i].r, colors[i].g, colors[i].b});
                 if (const std::optional<double> ev = exposureThatShows(std::move(peaks), 0.0)) {
                     controls.exposure = static_cast<float>(*ev);
                     char text[96];

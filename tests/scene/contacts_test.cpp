@@ -183,7 +183,7 @@ void expectTheDarkRoomStaysDark(bool sheetPartition) {
     // east side of the partition's foot share no value with the west side's
     // (shared, their Gouraud shading carried the lit room's light a mesh
     // element into the dark one).
-    const MeshSnapshot mesh = engine.snapshot();
+    const MeshSnapshot mesh = compactMesh(engine.snapshot());
     double darkest = 0.0;
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
         const glm::dvec3 p = glm::dvec3(mesh.positions[i]) + mesh.origin;

@@ -35,7 +35,7 @@ TEST(RadiositySnapshot, PolygonsMeetingAtASeamShareTheirLightNotTheirColour) {
     s.lights.push_back(bulb);
     Engine engine(s, EngineSettings{});
     ASSERT_TRUE(engine.solve().converged);
-    const MeshSnapshot mesh = engine.snapshot();
+    const MeshSnapshot mesh = compactMesh(engine.snapshot());  // without the room its slots keep to grow in
     int seams = 0;
     for (std::size_t i = 0; i < mesh.positions.size(); ++i)
         for (std::size_t j = i + 1; j < mesh.positions.size(); ++j) {
