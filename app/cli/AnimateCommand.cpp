@@ -110,7 +110,8 @@ std::size_t framesOverTarget(const AnimationRun& run) {
     }));
 }
 
-Report makeReport(const AnimateSettings& s, const Scene& scene, const AnimationRun& run) {
+Report makeReport(const AnimateSettings& s, const Scene& scene, const AnimationRun& run,
+                  const std::vector<Warning>& warnings) {
     Report frames = Report::array();
     const std::vector<double> totals = frameSeconds(run);
     std::vector<double> fullTimes, errors, objectErrors;
@@ -158,6 +159,7 @@ Report makeReport(const AnimateSettings& s, const Scene& scene, const AnimationR
           {"links_created", run.selection.reinsertion.created},
           {"shaft_tests", run.selection.shaftTests},
           {"candidates", run.selection.candidates}}},
+        {"warnings", warningsReport(warnings)},
         {"frames", frames},
         {"summary", summary},
     };
@@ -175,8 +177,13 @@ int animate(const AnimateSettings& settings) {
     ImportNotes notes;
     const Scene scene = loadGltf(s.scene, &notes);
     printImportNotes(notes);
-    printWarnings(importWarnings(notes));
+    std::vector<Warning> warnings = importWarnings(notes);
+    printWarnings(warnings);
     if (s.motion.script) checkScriptObjects(Script{s.motion.frames, s.motion.moves, s.motion.edits}, *s.motion.script, scene);
+    std::vector<std::string> moved;
+    for (const ObjectMove& m : s.motion.moves) moved.push_back(m.object);
+    const std::vector<Warning> cut = movedCutObjects(scene, moved);
+    printWarnings(cut);
 
     References references;
     const MotionRequest& request = s.motion;
@@ -214,6 +221,8 @@ int animate(const AnimateSettings& settings) {
         });
 
     printWarnings(run.initial.warnings);
+    warnings.insert(warnings.end(), run.initial.warnings.begin(), run.initial.warnings.end());
+    warnings.insert(warnings.end(), cut.begin(), cut.end());
     if (!run.frames.empty()) {
         const std::vector<double> totals = frameSeconds(run);
         std::printf("frames: median %.3f s, 95th percentile %.3f s, worst %.3f s", median(totals),
@@ -228,7 +237,7 @@ int animate(const AnimateSettings& settings) {
             std::printf("frame %zu: full solve %.2f s, error rms %.4f max %.4f, worst object rms %.4f\n", i + 1,
                         *r.fullSolveSeconds, r.error->rms, r.error->max, r.error->worstObjectRms);
     if (s.report) {
-        writeReport(*s.report, makeReport(s, scene, run));
+        writeReport(*s.report, makeReport(s, scene, run, warnings));
         std::printf("wrote %s\n", s.report->c_str());
     }
     if (s.images) std::printf("wrote %d images in %s\n", request.frames + 1, s.images->c_str());

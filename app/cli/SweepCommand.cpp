@@ -102,6 +102,9 @@ int sweep(const SweepSettings& settingsGiven) {
     printImportNotes(notes);
     printWarnings(importWarnings(notes));
     if (request.script) checkScriptObjects(Script{request.frames, request.moves, request.edits}, *request.script, scene);
+    std::vector<std::string> moved;
+    for (const ObjectMove& m : request.moves) moved.push_back(m.object);
+    printWarnings(movedCutObjects(scene, moved));
     std::filesystem::create_directories(out);
 
     References references;  // the from-scratch solves, shared by every run

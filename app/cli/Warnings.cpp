@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace rad::cli {
@@ -25,6 +26,25 @@ std::vector<Warning> importWarnings(const ImportNotes& notes) {
                       "reflects all its light)",
                       c.material.c_str(), c.largest, kMaxReflectance);
         out.push_back({"reflectance_clamped", message, {}, c.largest});
+    }
+    return out;
+}
+
+std::vector<Warning> movedCutObjects(const Scene& scene, const std::vector<std::string>& moved) {
+    std::vector<Warning> out;
+    for (const std::string& name : moved) {
+        const std::optional<std::uint32_t> o = scene.findObject(name);
+        if (!o || scene.objects[*o].dynamic || !(scene.objects[*o].cutArea > 0.0)) continue;
+        if (std::any_of(out.begin(), out.end(), [&](const Warning& w) { return w.objects.front() == name; })) continue;
+        char area[32];
+        std::snprintf(area, sizeof area, "%.3g", scene.objects[*o].cutArea);
+        out.push_back({"moved_cut_object",
+                       "'" + name + "' is not marked dynamic and the import left " + area +
+                           " m^2 of it out where it passes into or lies under other objects: moved, it shows "
+                           "those holes, and what it was sunk into keeps its own (mark it extras.dynamic to "
+                           "import both whole)",
+                       {name},
+                       scene.objects[*o].cutArea});
     }
     return out;
 }

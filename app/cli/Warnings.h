@@ -17,6 +17,12 @@ namespace rad::cli {
 // from; amount: how many polygons were dropped).
 std::vector<Warning> importWarnings(const ImportNotes& notes);
 
+// One warning of kind "moved_cut_object" per object in `moved` (names of
+// objects or lights) not marked dynamic that the import cut where it passes
+// into or lies under static objects (Object::cutArea, the amount): moved,
+// it shows those holes, and the objects it was sunk into keep theirs.
+std::vector<Warning> movedCutObjects(const Scene& scene, const std::vector<std::string>& moved);
+
 // "note: <line>" on stderr for what the import ignored, skipped or dropped
 // (ImportNotes::lines: an animation, a LINES primitive, a normal texture,
 // degenerate triangles), the first ten and then how many more.

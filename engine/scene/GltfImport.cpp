@@ -1416,6 +1416,7 @@ class Importer {
                 continue;
             }
             Object object = pending_[i].object;
+            object.cutArea = covered.areaLeftOut[i] + buried.areaLeftOut[i];
             object.firstPolygon = static_cast<std::uint32_t>(scene.polygons.size());
             object.polygonCount = static_cast<std::uint32_t>(polygons[i].size());
             const auto objectIndex = static_cast<std::uint32_t>(scene.objects.size());

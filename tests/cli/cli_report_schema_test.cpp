@@ -144,7 +144,12 @@ TEST(CliReportSchema, AnimateReportMatchesTheReadme) {
                           " --object short-block --frames 2 --translate 0,0,0.05 --compare-full --target-fps 30"
                           " --report " + shellQuote(report));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    expectReportMatchesReadme({report}, "### The `animate` report");
+    // And one whose solve warns (`lamp-room`'s energy guard): the warnings' keys.
+    const std::string warned = (dir / "warned.json").string();
+    const auto w = runCli("animate " + shellQuote(test::sourcePath("scenes/lamp-room.gltf")) +
+                          " --object chair --frames 1 --translate 0.05,0,0 --epsilon 2e-4 --report " + shellQuote(warned));
+    ASSERT_EQ(w.exitCode, 0) << w.output;
+    expectReportMatchesReadme({report, warned}, "### The `animate` report");
 }
 
 TEST(CliReportSchema, SweepReportMatchesTheReadme) {

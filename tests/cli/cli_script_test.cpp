@@ -38,6 +38,34 @@ std::pair<test::RunResult, json> animateComparing(const test::TempDir& dir, cons
     return {r, r.exitCode == 0 ? test::readJson(report) : json()};
 }
 
+// A box of quads (two triangles each) as a node of its own; `inward` turns
+// its faces to its inside (a room); `extras`: the node's extras, if any.
+void addBox(test::GltfBuilder& g, int material, const std::string& name, glm::vec3 lo, glm::vec3 hi, bool inward,
+            const std::string& extras = "") {
+    std::vector<glm::vec3> p;
+    std::vector<std::uint32_t> idx;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            const auto base = static_cast<std::uint32_t>(p.size());
+            for (auto [a, b] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
+                glm::vec3 q;
+                q[axis] = side ? hi[axis] : lo[axis];
+                q[u] = a ? hi[u] : lo[u];
+                q[v] = b ? hi[v] : lo[v];
+                p.push_back(q);
+            }
+            // (u, v) counter-clockwise faces +axis: outward on the high side.
+            const bool flip = (side == 0) != inward;
+            for (std::uint32_t k : flip ? std::vector<std::uint32_t>{0, 2, 1, 0, 3, 2}
+                                        : std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3})
+                idx.push_back(base + k);
+        }
+    g.addNode("\"name\":\"" + name + "\",\"mesh\":" +
+              std::to_string(g.addMesh(name, g.addPositions(p), g.addIndices(idx), material)) +
+              (extras.empty() ? "" : ",\"extras\":" + extras));
+}
+
 TEST(CliScript, MovesAndEditsMatchAFullSolveEveryFrame) {
     test::TempDir dir;
     const std::string script = writeScript(dir, "moves.json", R"({"frames": 3, "actions": [
@@ -65,32 +93,8 @@ TEST(CliScript, APunctualLightMovesAndDimsInAScript) {
     test::TempDir dir;
     test::GltfBuilder g;
     const int grey = g.addGrey("grey", 0.6);
-    // Quads as two triangles; `inward` turns the room's faces to its inside.
-    const auto addBox = [&](const std::string& name, glm::vec3 lo, glm::vec3 hi, bool inward) {
-        std::vector<glm::vec3> p;
-        std::vector<std::uint32_t> idx;
-        for (int axis = 0; axis < 3; ++axis)
-            for (int side = 0; side < 2; ++side) {
-                const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-                const auto base = static_cast<std::uint32_t>(p.size());
-                for (auto [a, b] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
-                    glm::vec3 q;
-                    q[axis] = side ? hi[axis] : lo[axis];
-                    q[u] = a ? hi[u] : lo[u];
-                    q[v] = b ? hi[v] : lo[v];
-                    p.push_back(q);
-                }
-                // (u, v) counter-clockwise faces +axis: outward on the high side.
-                const bool flip = (side == 0) != inward;
-                for (std::uint32_t k : flip ? std::vector<std::uint32_t>{0, 2, 1, 0, 3, 2}
-                                            : std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3})
-                    idx.push_back(base + k);
-            }
-        g.addNode("\"name\":\"" + name + "\",\"mesh\":" +
-                  std::to_string(g.addMesh(name, g.addPositions(p), g.addIndices(idx), grey)));
-    };
-    addBox("room", {0, 0, 0}, {4, 3, 4}, true);
-    addBox("box", {1.5f, 0, 1.5f}, {2.3f, 0.8f, 2.3f}, false);
+    addBox(g, grey, "room", {0, 0, 0}, {4, 3, 4}, true);
+    addBox(g, grey, "box", {1.5f, 0, 1.5f}, {2.3f, 0.8f, 2.3f}, false);
     g.extraTopLevel = R"("extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","color":[1,0.9,0.8],"intensity":40}]}},)";
     g.addNode(R"("name":"bulb","translation":[1,2.5,1],"extensions":{"KHR_lights_punctual":{"light":0}})");
     const std::string scene = g.writeEmbedded(dir).string();
@@ -112,6 +116,47 @@ TEST(CliScript, APunctualLightMovesAndDimsInAScript) {
     const auto e = runCli("animate " + shellQuote(scene) + " --script " + shellQuote(bad));
     EXPECT_EQ(e.exitCode, 2) << e.output;
     EXPECT_NE(e.output.find("punctual light"), std::string::npos) << e.output;
+}
+
+// An object not marked dynamic that the import cut where it passes into
+// another (a shelf sunk 10 cm into a pillar) keeps the hole when moved: the
+// move warns, naming it and the area left out, on stderr and in the report.
+// One marked dynamic is imported whole and moves without a word.
+TEST(CliScript, MovingAnObjectTheImportCutWarns) {
+    test::TempDir dir;
+    test::GltfBuilder g;
+    const int grey = g.addGrey("grey", 0.6);
+    const int lamp = g.addMaterial(R"({"name":"lamp","emissiveFactor":[1,1,1],)"
+                                   R"("pbrMetallicRoughness":{"baseColorFactor":[0.8,0.8,0.8,1]}})");
+    addBox(g, grey, "room", {0, 0, 0}, {4, 3, 4}, true);
+    addBox(g, grey, "pillar", {2.0f, 0, 1.0f}, {2.4f, 3.0f, 1.4f}, false);
+    addBox(g, grey, "shelf", {1.0f, 1.0f, 1.1f}, {2.1f, 1.05f, 1.3f}, false);  // its last 10 cm in the pillar
+    addBox(g, grey, "crate", {1.9f, 0, 2.0f}, {2.5f, 0.4f, 2.6f}, false, R"({"dynamic":true})");
+    addBox(g, grey, "bin", {2.3f, 0, 2.4f}, {2.8f, 0.3f, 2.9f}, false);  // passes into the crate: left whole
+    addBox(g, lamp, "panel", {1.5f, 2.98f, 1.5f}, {2.5f, 2.99f, 2.5f}, false);
+    const std::string scene = g.writeEmbedded(dir).string();
+    const std::string report = (dir / "r.json").string();
+    const std::string script = writeScript(dir, "move.json", R"({"frames": 1, "actions": [
+        {"object": "shelf", "translate": [-0.5, 0, 0]},
+        {"object": "crate", "translate": [-0.5, 0, 0]}]})");
+    const auto r = runCli("animate " + shellQuote(scene) + " --script " + shellQuote(script) + " --report " +
+                          shellQuote(report));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: 'shelf' is not marked dynamic and the import left 0.0"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("warning: 'crate'"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("warning: 'bin'"), std::string::npos) << r.output;
+    const json doc = test::readJson(report);
+    int found = 0;
+    for (const json& w : jsonAt(doc, "/warnings")) {
+        if (w.at("kind") != "moved_cut_object") continue;
+        ++found;
+        EXPECT_EQ(w.at("objects"), json::array({"shelf"}));
+        // The shelf's top, bottom and two sides lose 10 cm each inside the
+        // pillar (4 x 0.1 x 0.2 or 0.05), and its end face is inside whole.
+        EXPECT_NEAR(w.at("amount").get<double>(), 2 * 0.1 * 0.2 + 2 * 0.1 * 0.05 + 0.2 * 0.05, 1e-6) << w.dump();
+    }
+    EXPECT_EQ(found, 1) << jsonAt(doc, "/warnings").dump();
 }
 
 TEST(CliScript, TwoObjectsMoveAtOnce) {

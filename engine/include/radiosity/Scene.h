@@ -100,6 +100,9 @@ struct Object {
     // into the file's nodes): objects under one node share its prefix, so a
     // selection can be widened to a parent's whole subtree.
     std::vector<std::uint32_t> nodePath;
+    // The area the import left out of it, covered by or buried in static
+    // objects (scene/Covered.h, scene/Buried.h): moved, it shows the holes.
+    double cutArea = 0.0;
 };
 
 // A KHR_lights_punctual light: a point that sends radiant intensity
