@@ -356,9 +356,6 @@ struct Engine::State {
             refiner.markDirty(e);
         }
     }
-    // A frame in which objects' links wait for their moves (being found, or
-    // deferred): how many, and the estimate with their links in the share
-    // of its size each object has moved since they were last updated.
     // The clusters of these objects and of those whose moves wait (being
     // found, or deferred).
     std::vector<ElementId> waitingClusters(std::span<const std::pair<std::uint32_t, glm::dmat4>> moving) const {
@@ -370,6 +367,9 @@ struct Engine::State {
         for (std::uint32_t object : objects) clusters.push_back(hierarchy.objectCluster(object));
         return clusters;
     }
+    // A frame in which objects' links wait for their moves (being found, or
+    // deferred): how many, and the estimate with their links in the share
+    // of its size each object has moved since they were last updated.
     void countWaitingMoves(FrameStats& f) {
         std::map<std::uint32_t, Aabb> since;
         for (const auto& [object, d] : finding) since.emplace(object, d.box);
