@@ -374,7 +374,14 @@ int runViewer(const ViewerOptions& options) {
                     lastMessage = text;
                 }
             }
-            ps.warnings = importWarnings;
+            // First, about the selected object: one the import cut (not
+            // marked dynamic, sunk into others) shows its holes once dragged,
+            // said as the CLI says it.
+            ps.warnings.clear();
+            if (snap->selected && *snap->selected < snap->objects.size() && !snap->objects[*snap->selected].light)
+                for (const Warning& w : cli::movedCutObjects(scene, {snap->objects[*snap->selected].name}))
+                    ps.warnings.push_back(w.message);
+            ps.warnings.insert(ps.warnings.end(), importWarnings.begin(), importWarnings.end());
             if (solved)
                 for (const Warning& w : snap->solve.warnings) ps.warnings.push_back(w.message);
             ps.polygons = snap->solve.polygons;
