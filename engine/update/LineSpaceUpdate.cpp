@@ -329,6 +329,19 @@ void LineSpaceUpdate::dropCarriedOfFreed() const {
     carriedReleases_ = h_.releases();
 }
 
+namespace {
+// Calls f on `top` and every element below it.
+template <class F>
+void forEachBelow(const Hierarchy& h, ElementId top, F&& f) {
+    for (std::vector<ElementId> stack{top}; !stack.empty();) {
+        const HElement& e = h[stack.back()];
+        stack.pop_back();
+        f(e);
+        stack.insert(stack.end(), e.children.begin(), e.children.end());
+    }
+}
+}  // namespace
+
 const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(ElementId top) const {
     dropCarriedOfFreed();
     auto [it, made] = carried_.try_emplace(top);
@@ -340,12 +353,9 @@ const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(Elem
     // floor took 4.5 ms (a sixth of them reach a cluster, whose projected
     // area toward the source is a sum over its facets).
     std::vector<LinkId> ids;
-    for (std::vector<ElementId> stack{top}; !stack.empty();) {
-        const HElement& e = h_[stack.back()];
-        stack.pop_back();
+    forEachBelow(h_, top, [&](const HElement& e) {
         for (const IdList* list : {&e.links, &e.outLinks}) ids.insert(ids.end(), list->begin(), list->end());
-        for (ElementId c : e.children) stack.push_back(c);
-    }
+    });
     std::vector<double> transfer(ids.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ids.size(), 1024), [&](const auto& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -372,12 +382,7 @@ const std::vector<std::pair<ElementId, double>>& LineSpaceUpdate::carriedBy(Elem
 
 std::size_t LineSpaceUpdate::linksCarriedBy(ElementId top) const {
     std::size_t links = 0;
-    for (std::vector<ElementId> stack{top}; !stack.empty();) {
-        const HElement& e = h_[stack.back()];
-        stack.pop_back();
-        links += e.links.size() + e.outLinks.size();
-        stack.insert(stack.end(), e.children.begin(), e.children.end());
-    }
+    forEachBelow(h_, top, [&](const HElement& e) { links += e.links.size() + e.outLinks.size(); });
     return links;
 }
 
