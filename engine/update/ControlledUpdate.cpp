@@ -168,9 +168,32 @@ void LineSpaceUpdate::markStale(LinkId id, bool stale) {
 }
 
 void LineSpaceUpdate::defer(std::size_t index) {
-    const std::size_t before = stale_.size();
     std::vector<std::size_t> stack{index};
+    deferFrom(stack, false);
+}
+
+bool LineSpaceUpdate::deferFound() {
+    if (!deferringFound_) deferStack_.assign(1, 0);
+    deferringFound_ = !deferFrom(deferStack_, true);
+    return !deferringFound_;
+}
+
+bool LineSpaceUpdate::deferFrom(std::vector<std::size_t>& stack, bool onTheClock) {
+    // Their potential transfers, read for the estimate, a run at a time on
+    // all cores.
+    std::size_t keyed = stale_.size();
+    const auto key = [&] {
+        tbb::parallel_for(keyed, stale_.size(), [&](std::size_t i) {
+            const Link& l = links_[stale_[i].id];
+            stale_[i].transfer = l.live ? heapKey(l) : 0.0;  // a reinstate may have removed it
+        });
+        keyed = stale_.size();
+    };
     while (!stack.empty()) {
+        if (onTheClock && stale_.size() - keyed >= kDeadlineChunk) {
+            key();
+            if (pastDeadline()) return false;
+        }
         const Visit& v = visits_[stack.back()];
         stack.pop_back();
         for (const std::vector<LinkId>* list : {&v.affected, &v.candidates})
@@ -182,10 +205,8 @@ void LineSpaceUpdate::defer(std::size_t index) {
         for (const Group& g : v.groups)
             for (std::size_t child : g.visits()) stack.push_back(child);
     }
-    tbb::parallel_for(before, stale_.size(), [&](std::size_t i) {
-        const Link& l = links_[stale_[i].id];
-        stale_[i].transfer = l.live ? heapKey(l) : 0.0;  // a reinstate may have removed it
-    });
+    key();
+    return true;
 }
 
 bool LineSpaceUpdate::changedSince(const Link& l, std::uint32_t frame) const {

@@ -277,6 +277,13 @@ private:
                  FrameStats& stats);
     // Puts the links of a visit and everything below it in the stale queue.
     void defer(std::size_t visit);
+    // The same for everything a resumed traversal found, on the clock: a
+    // deadline stops it between runs of kDeadlineChunk links (false), and
+    // the next call goes on from there (deferStack_).
+    bool deferFound();
+    // Defers the visits on `stack` and those below them; on the clock, stops
+    // past the link updates' deadline (false), the rest left on `stack`.
+    bool deferFrom(std::vector<std::size_t>& stack, bool onTheClock);
     // Recomputes up to `budget` stale links at the current position; returns
     // how many.
     std::size_t catchUp(std::size_t budget, FrameStats& stats);
@@ -576,6 +583,10 @@ private:
         double transfer;
     };
     std::deque<StaleLink> stale_;
+    // The visits deferFound has yet to defer, while it goes on over frames
+    // (deferringFound_); a p-link's visit before those below it.
+    std::vector<std::size_t> deferStack_;
+    bool deferringFound_ = false;
     // Per moving object (its cluster's range), the last frame it moved in;
     // and the last frame the layers changed in (chooseObject). A stale link
     // whose end moved, or whose layers changed, since the frame that found
