@@ -21,6 +21,7 @@ namespace rad {
 template <class T, unsigned Shift>
 class ChunkedArray {
 public:
+    using value_type = T;
     static constexpr std::size_t kChunk = std::size_t(1) << Shift;
     static constexpr std::size_t kChunkBytes = kChunk * sizeof(T);
 

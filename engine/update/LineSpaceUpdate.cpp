@@ -607,7 +607,9 @@ RefineSettings::Beside LineSpaceUpdate::memoryBeside() {
     b.fixed = decltype(isTouched_)::kChunkBytes + decltype(waitingChange_)::kChunkBytes +
               decltype(powerScratch_)::kChunkBytes + decltype(sending_)::kChunkBytes + UnsentSet::kFixedBytes +
               2 * LinkBits::kChunkBytes + kLeastTransfers * sizeof(Transfer);
-    b.perElement = sizeof(char) + 2 * sizeof(double) + sizeof(char) + UnsentSet::kBytesPerElement + sizeof(double);
+    b.perElement = sizeof(decltype(isTouched_)::value_type) + sizeof(decltype(waitingChange_)::value_type) +
+                   sizeof(decltype(powerScratch_)::value_type) + sizeof(decltype(sending_)::value_type) +
+                   sizeof(decltype(carriedScratch_)::value_type) + UnsentSet::kBytesPerElement;
     b.perLink = 1 + (sizeof(Transfer) + kLinksPerTransfer - 1) / kLinksPerTransfer;
     return b;
 }
