@@ -223,8 +223,7 @@ public:
     // or `below` levels further (children of at least minArea / 4^below):
     // one for a shadow boundary cast by a blocker right at the surface, or a
     // surface shining on another close in front of it; two for a surface an
-    // emitter shines along (Refiner::chooseSplit), and for a receiver across
-    // a punctual light's shadow edge (LightLinks). The index ranges number
+    // emitter shines along (Refiner::chooseSplit). The index ranges number
     // kLevelsBelowThreshold levels below the area threshold.
     static constexpr int kLevelsBelowThreshold = 2;
     bool canSubdivide(ElementId id, int below = 0) const;

@@ -102,7 +102,6 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
     for (std::size_t k = 0; k < rays; ++k)
         if (shadowed & (1u << k)) g[of[k]] = 0.0;
     Estimate out;
-    out.acrossShadow = shadowed != 0u && shadowed != (1u << rays) - 1u;
     // Every point in shadow: a lit band between them would be missed, and
     // its light with it, the element left unlinked and never refined (a
     // random room's floor between a floating box's shadow and a table's:
@@ -127,10 +126,7 @@ LightLinks::Estimate LightLinks::estimate(const PunctualLight& light, ElementId 
         probe(e.center);
         const std::uint16_t probeShadowed = blocked(probes);
         for (std::size_t k = 0; k < probes; ++k)
-            if (!(probeShadowed & (1u << k))) {
-                out.spread = std::max(out.spread, probeG[k]);
-                out.acrossShadow = true;
-            }
+            if (!(probeShadowed & (1u << k))) out.spread = std::max(out.spread, probeG[k]);
     }
     double lo = INFINITY, weight = 0.0;
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -216,11 +212,7 @@ void LightLinks::link(std::uint32_t lightIndex, const std::vector<std::uint32_t>
                 continue;
             }
             const Estimate& est = estimates[i];
-            // Across a shadow's edge, down to two levels below the area
-            // threshold: a point light's shadows have no penumbra, and an
-            // element costs one light link, not a link to every other one.
-            const int below = est.acrossShadow ? 2 : 0;
-            bool refine = intensity * est.spread * h_[e].area > threshold_ && h_.canSubdivide(e, below);
+            bool refine = intensity * est.spread * h_[e].area > threshold_ && h_.canSubdivide(e);
             if (refine && late) {
                 pending_[lightIndex].insert(polygon);
                 refine = false;

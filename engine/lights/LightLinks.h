@@ -9,8 +9,7 @@
 // that irradiance varies across it by more than the refinement threshold
 // allows: the paper's B F A_r criterion becomes the spread of the irradiance
 // times the receiver's area. Shadow edges, spot rims and walls near a light
-// refine, shadow edges down to two levels below the area threshold (a point
-// light's shadows are hard); a floor far from it does not.
+// refine; a floor far from it does not.
 //
 // What the links bring is each element's `direct` irradiance. The solver adds
 // it under the energy guard's reach (a light is not a surface that form
@@ -112,7 +111,6 @@ private:
     };
     struct Estimate {
         double mean = 0.0, spread = 0.0, peak = 0.0;
-        bool acrossShadow = false;  // some of its points see the light, some do not
     };
     // The irradiance per unit intensity at the receiver's quadrature points.
     Estimate estimate(const PunctualLight& light, ElementId receiver) const;

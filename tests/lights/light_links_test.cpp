@@ -20,7 +20,6 @@
 #include "radiosity/Gltf.h"
 #include "support/GltfBuilder.h"
 #include "support/Motion.h"
-#include "support/Regions.h"
 #include "support/TempDir.h"
 #include "support/TestScenes.h"
 
@@ -155,54 +154,6 @@ TEST(PunctualLight, ABlockerCastsItsShadow) {
     const double expected =
         kRho * kIntensity * (squareSolidAngle(kA, kH) - squareSolidAngle(kB, kH - kY)) / (4.0 * kA * kA);
     EXPECT_NEAR(floorRadiosity(engine), expected, 0.01 * expected);
-}
-
-// A point light casts a hard shadow: no penumbra, the irradiance drops from
-// its full value to zero across a line. Elements at the area threshold
-// (12.5 cm on this 2 m floor) that straddle the line take the mean of both
-// sides, and the drawn mesh spreads it a whole element into the light. A
-// light link costs one link per element, not one per pair, so an element
-// across a shadow's edge is refined two levels below the area threshold
-// (Hierarchy::canSubdivide): a strip 4 to 7 cm from the edge is drawn as lit
-// as the closed form says (0.97 of it; 0.59 at the area threshold). In a
-// random room a ceiling lamp's edge cast such a shadow through the hot spot
-// of a point light under it: 8.2% block RMS from Cycles, 5.2% now
-// (bench/untuned/random_room.py, seed 105).
-TEST(PunctualLight, AHardShadowEdgeIsResolvedBelowTheAreaThreshold) {
-    TempDir dir;
-    GltfBuilder g;
-    const double h = 1.0, blockerY = 0.5, blockerEdge = 0.0173;  // the shadow's edge at x = 0.0346
-    addSquare(g, "floor", 1.0, 0.0, true, g.addGrey("grey", kRho));
-    const float e = static_cast<float>(blockerEdge), y = static_cast<float>(blockerY);
-    const std::vector<glm::vec3> blocker = {{-1.0f, y, -1.0f}, {-1.0f, y, 1.0f}, {e, y, 1.0f}, {e, y, -1.0f}};
-    g.addNode("\"name\":\"blocker\",\"mesh\":" +
-              std::to_string(g.addMesh("blocker", g.addPositions(blocker), g.addIndices({0, 1, 2, 0, 2, 3}),
-                                       g.addGrey("black", 0.0))));
-    addLights(g, "[{\"type\":\"point\",\"intensity\":" + number(kIntensity) + "}]");
-    addLightNode(g, "bulb", 0, {0.0, h, 0.0});
-    EngineSettings settings;
-    settings.minArea = 0.01;
-    Engine engine(loadGltf(g.writeEmbedded(dir).string()), settings);
-    ASSERT_TRUE(engine.solve().converged);
-    const double edge = blockerEdge * h / (h - blockerY);
-    const double x0 = edge + 0.04, x1 = edge + 0.07, zMax = 0.3;
-    const auto inStrip = [&](const glm::dvec3& p) {
-        return p.y < 1e-6 && p.x > x0 && p.x < x1 && std::abs(p.z) < zMax;
-    };
-    // The closed form over the strip: rho I h / (h^2 + r^2)^(3/2), by the midpoint rule.
-    double expected = 0.0;
-    const int n = 60;
-    for (int i = 0; i < n; ++i)
-        for (int k = 0; k < n; ++k) {
-            const double x = x0 + (x1 - x0) * (i + 0.5) / n, z = -zMax + 2.0 * zMax * (k + 0.5) / n;
-            expected += kRho * kIntensity * h / std::pow(h * h + x * x + z * z, 1.5) / (n * n);
-        }
-    EXPECT_NEAR(test::drawnLuminance(engine, inStrip), expected, 0.05 * expected);
-    // And the shadow side as far from the edge is dark.
-    const auto inShadow = [&](const glm::dvec3& p) {
-        return p.y < 1e-6 && p.x < 2.0 * edge - x0 && p.x > 2.0 * edge - x1 && std::abs(p.z) < zMax;
-    };
-    EXPECT_LT(test::drawnLuminance(engine, inShadow), 0.05 * expected);
 }
 
 // bench/untuned/random_room.py's seed 1 (tests/data/random-room-1.gltf):
